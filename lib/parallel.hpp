@@ -1,0 +1,19 @@
+// A dynamic parallel loop over [0, count): worker threads take the next index from an atomic
+// counter, so uneven work (LP solves, image decodes) balances itself. The first exception thrown by
+// any worker stops the loop and is rethrown on the calling thread.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace relume {
+
+// Number of worker threads to use when the user asked for `requested` (0 = all cores).
+unsigned resolve_thread_count(unsigned requested);
+
+// Calls body(index, worker) for every index; worker is in [0, threads) and lets a body keep
+// per-thread state (for example one GLPK problem per worker).
+void parallel_for(std::size_t count, unsigned threads,
+                  const std::function<void(std::size_t index, unsigned worker)>& body);
+
+}  // namespace relume

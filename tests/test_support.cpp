@@ -1,0 +1,52 @@
+// Implementation of the test helpers.
+#include "test_support.hpp"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+namespace relume::testing {
+namespace fs = std::filesystem;
+
+std::string shared_data_hint() {
+  const char* env = std::getenv("RELUME_DATA");
+  return env ? std::string(env) : std::string(RELUME_DEFAULT_DATA_DIR);
+}
+
+std::optional<fs::path> shared_data_dir() {
+  const fs::path dir = shared_data_hint();
+  if (fs::is_directory(dir / "olat") && fs::is_directory(dir / "envmaps")) return dir;
+  return std::nullopt;
+}
+
+TempDir::TempDir() {
+  std::random_device device;
+  path_ = fs::temp_directory_path() / ("relume-test-" + std::to_string(device()));
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+}
+
+CommandResult run_relume(const std::string& arguments) {
+  const std::string command = std::string("RELUME_QUIET=1 '") + RELUME_BINARY + "' " + arguments + " 2>&1";
+  CommandResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) {
+    result.exit_code = -1;
+    return result;
+  }
+  std::array<char, 4096> buffer{};
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+    result.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace relume::testing
