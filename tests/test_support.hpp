@@ -2,6 +2,7 @@
 // temporary folder per test, and running the built `relume` binary.
 #pragma once
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>

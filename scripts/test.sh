@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs dependencies, builds, and runs the whole GoogleTest suite through ctest (PoCL executes
+# the OpenCL kernels on the CPU). Real data is read from ../shared/data unless RELUME_DATA says
+# otherwise; tests that need it say so when they skip.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install_deps.sh
+scripts/build.sh
+export RELUME_QUIET=1
+ctest --test-dir build --output-on-failure -j "$(nproc)"
