@@ -1,8 +1,12 @@
 // Implementation of the shared --lights / --env options.
 #include "light_source_options.hpp"
 
+#include <cstdio>
+
+#include "environment_map.hpp"
 #include "error.hpp"
 #include "light_file.hpp"
+#include "light_vector.hpp"
 
 namespace relume {
 
@@ -26,8 +30,13 @@ void add_light_source_options(CLI::App& command, LightSourceOptions& options) {
 LightRgb resolve_light_vector(const LightSourceOptions& options, const LightDirections& directions) {
   if (options.lights_file.empty() && options.environment.empty())
     throw Error("give the light source: --lights FILE or --env MAP");
-  if (!options.environment.empty())
-    throw Error("--env is not available yet in this build");
+  if (!options.environment.empty()) {
+    const EnvironmentMap map =
+        load_environment_map(options.environment, parse_layout_option(options.layout));
+    LightVector vector = integrate_light_vector(map, directions, options.rotate_degrees);
+    std::fprintf(stderr, "%s: %s\n", options.environment.c_str(), describe_coverage(vector).c_str());
+    return vector.rgb;
+  }
   LightRgb lights = read_rgb_rows(options.lights_file, "light vector");
   if (lights.rows() != directions.rows())
     throw Error(options.lights_file + " has " + std::to_string(lights.rows()) +
