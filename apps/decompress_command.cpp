@@ -1,0 +1,57 @@
+// `relume decompress`: reconstructs the reflectance field a .relume container stands for
+// (W F + the residual, optionally cut to N entries per function, back in the light basis) and
+// writes it as a field folder that `relume` reads again: one EXR per light, filenames.txt,
+// light_directions.txt, light_intensities.txt and mask.png.
+#include <cstdio>
+#include <memory>
+
+#include "command_registry.hpp"
+#include "container.hpp"
+#include "field_io.hpp"
+#include "reconstruct_field.hpp"
+
+namespace relume {
+namespace {
+
+struct DecompressOptions {
+  std::string input;
+  std::string output;
+  int residual = all_residual_entries;
+};
+
+void run_decompress(const DecompressOptions& options) {
+  const CompressedField compressed = read_container(options.input);
+  const ReflectanceField field = reconstruct_field(compressed, options.residual);
+  write_field_folder(options.output, field);
+  const std::string residual =
+      options.residual == all_residual_entries
+          ? "complete"
+          : "cut to " + std::to_string(options.residual) + " entries per function";
+  std::printf("wrote %s: %d x %d pixels, %d channels, %d lights, residual %s\n",
+              options.output.c_str(), field.width, field.height, field.channels, field.lights(),
+              residual.c_str());
+}
+
+const CommandRegistration registration{
+    45, [](CLI::App& app) {
+      auto options = std::make_shared<DecompressOptions>();
+      auto* command = app.add_subcommand(
+          "decompress",
+          "Reconstruct the reflectance field of a .relume container and write it as a field folder "
+          "(one EXR per light plus light and mask files) that relume reads again");
+      command->add_option("input", options->input, "The .relume container")->required();
+      command
+          ->add_option("-o,--output", options->output,
+                       "Output folder (created if missing; existing files of the same names are "
+                       "replaced)")
+          ->required();
+      command
+          ->add_option("--residual", options->residual,
+                       "Keep at most N residual entries per function, the largest ones (default: "
+                       "all that are stored)")
+          ->check(CLI::NonNegativeNumber);
+      command->callback([options] { run_decompress(*options); });
+    }};
+
+}  // namespace
+}  // namespace relume
