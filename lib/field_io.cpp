@@ -180,18 +180,21 @@ void write_field_folder(const fs::path& folder, const ReflectanceField& field) {
   fs::create_directories(folder);
   const int lights = field.lights();
   const int digits = std::max(3, static_cast<int>(std::to_string(lights).size()));
-  std::string names;
+  std::vector<std::string> image_names(lights);
   for (int i = 0; i < lights; ++i) {
-    std::string name = std::to_string(i + 1);
-    name = std::string(digits - name.size(), '0') + name + ".exr";
+    const std::string number = std::to_string(i + 1);
+    image_names[i] = std::string(digits - number.size(), '0') + number + ".exr";
+  }
+  parallel_for(lights, 0, [&](std::size_t i, unsigned) {
     Image image(field.width, field.height, field.channels);
     for (std::int64_t p = 0; p < field.pixels(); ++p)
       for (int c = 0; c < field.channels; ++c)
         image.pixels[p * field.channels + c] =
-            field.values(p * field.channels + c, i) * channel_intensity(field, i, c);
-    write_image(folder / name, image);
-    names += name + "\n";
-  }
+            field.values(p * field.channels + c, i) * channel_intensity(field, int(i), c);
+    write_image(folder / image_names[i], image);
+  });
+  std::string names;
+  for (const auto& name : image_names) names += name + "\n";
   write_rgb_rows(folder / "light_directions.txt", field.directions, "");
   write_rgb_rows(folder / "light_intensities.txt", field.intensities, "");
   Image mask(field.width, field.height, 1);

@@ -22,7 +22,17 @@ ProgressReporter::ProgressReporter(std::string title, std::uint64_t total, bool 
   if (!quiet_) thread_ = std::thread([this] { run(); });
 }
 
-ProgressReporter::~ProgressReporter() { finish(); }
+// Without finish() the work did not complete (an exception unwound past it): stop quietly.
+ProgressReporter::~ProgressReporter() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+  if (terminal_) std::fputc('\n', stderr);
+}
 
 double ProgressReporter::elapsed_seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
