@@ -29,7 +29,8 @@ struct L1Options {
   double huber_gamma = 1e-3;     // relative to the scale of b (see implementation notes)
   double irls_tolerance = 1e-6;  // relative change of the objective that stops IRLS
   int irls_max_iterations = 100;
-  bool nonnegative_residual = false;  // lp_primal only: residual b - A x >= 0
+  double irls_epsilon = 1e-8;    // smallest |residual| in the IRLS weights, relative to max |b|
+  bool nonnegative_residual = false;  // lp_primal and lp_dual only: residual b - A x >= 0
 };
 
 class LadSolver {
