@@ -1,0 +1,293 @@
+// Relighting kernels for a compressed reflectance field (lib/opencl_relighter.cpp uploads the data
+// and sets the defines below). BATCH light vectors are relit in one pass over W and E.
+//
+//   cluster_products: v[k][j][c][b] = sum_i F^k[j][i] * I[i][c][b], every cluster in one launch.
+//     F^k is stored in 2x2 blocks as float4 (rows 2jb, 2jb+1 x lights 2ib, 2ib+1), zero-padded
+//     to even terms and lights ("NV-Single" blocking); one work-item per (cluster, row pair,
+//     group of frames).
+//   relight_rows: out[b][p] = W[s] . v[k][.][c][b]
+//                             + sum_{e < min(width, cap)} E[s][e] * I[i_e][c][b]
+//   residual_rows: the residual term alone (the residual SpMV).
+//     One work-item per stored row s (function p, channel c = p % CHANNELS, cluster k). Rows are
+//     grouped in slices of SLICE_ROWS; inside a slice, W and E are stored slot-major (all rows'
+//     term j, then term j+1; all rows' entry e, then e+1), so consecutive work-items read
+//     consecutive addresses. A slice's residual is padded with zero entries to the width of its
+//     longest row: reading a padded entry adds 0 * I[0]. Per-row arrays are padded to whole
+//     slices.
+//     With BATCH == 1 and ROW_VECTOR > 1 (CPU devices), a work-item relights ROW_VECTOR
+//     consecutive rows of a slice with vector loads and gathers; otherwise a work-item relights
+//     one row for all frames, the frames forming vectors of BATCH_WIDTH.
+//
+// Light vectors: light[(i * CHANNELS + c) * BATCH_PAD + b], lights padded to even with zeros.
+// Products:      v[((k * TERMS + j) * CHANNELS + c) * BATCH_PAD + b].
+// Output:        out[b * frame_stride + p]; functions that are not stored are never written. The
+//                host pads frame_stride so that the frames' write streams do not alias in cache.
+
+#ifndef TERMS
+#define TERMS 4
+#endif
+#ifndef CHANNELS
+#define CHANNELS 3
+#endif
+#ifndef BATCH
+#define BATCH 1  // frames relit per pass
+#endif
+#ifndef BATCH_WIDTH
+#define BATCH_WIDTH 1  // frames per vector: 1, 2, 4, 8 or 16
+#endif
+#ifndef SLICE_ROWS
+#define SLICE_ROWS 32
+#endif
+#ifndef CLUSTER_T
+#define CLUSTER_T uint
+#endif
+#ifndef LIGHT_T
+#define LIGHT_T uint
+#endif
+#ifndef ROW_VECTOR
+#define ROW_VECTOR 1  // rows per work-item when BATCH == 1: 1, 4, 8 or 16
+#endif
+
+#define BATCH_VECTORS ((BATCH + BATCH_WIDTH - 1) / BATCH_WIDTH)
+#define BATCH_PAD (BATCH_VECTORS * BATCH_WIDTH)
+#define TERM_PAIRS ((TERMS + 1) / 2)
+
+#if BATCH_WIDTH == 1
+typedef float frames;
+#define load_frames(pointer) (*(pointer))
+#define store_frames(value, pointer) (*(pointer) = (value))
+#elif BATCH_WIDTH == 2
+typedef float2 frames;
+#define load_frames(pointer) vload2(0, pointer)
+#define store_frames(value, pointer) vstore2(value, 0, pointer)
+#elif BATCH_WIDTH == 4
+typedef float4 frames;
+#define load_frames(pointer) vload4(0, pointer)
+#define store_frames(value, pointer) vstore4(value, 0, pointer)
+#elif BATCH_WIDTH == 8
+typedef float8 frames;
+#define load_frames(pointer) vload8(0, pointer)
+#define store_frames(value, pointer) vstore8(value, 0, pointer)
+#elif BATCH_WIDTH == 16
+typedef float16 frames;
+#define load_frames(pointer) vload16(0, pointer)
+#define store_frames(value, pointer) vstore16(value, 0, pointer)
+#else
+#error "BATCH_WIDTH must be 1, 2, 4, 8 or 16"
+#endif
+
+#if TERMS > 0  // a residual-only field has no basis products
+// Global size: clusters * TERM_PAIRS * BATCH_VECTORS.
+__kernel void cluster_products(const uint light_pairs, __global const float4* blocks,
+                               __global const float* light, __global float* products) {
+  const uint gid = get_global_id(0);
+  const uint vector = gid % BATCH_VECTORS;
+  const uint pair = (gid / BATCH_VECTORS) % TERM_PAIRS;
+  const uint k = gid / (BATCH_VECTORS * TERM_PAIRS);
+  __global const float4* block = blocks + (k * TERM_PAIRS + pair) * light_pairs;
+  __global const float* frames_of = light + vector * BATCH_WIDTH;
+  frames upper[CHANNELS], lower[CHANNELS];
+  for (int c = 0; c < CHANNELS; ++c) upper[c] = lower[c] = (frames)(0.0f);
+  for (uint ib = 0; ib < light_pairs; ++ib) {
+    const float4 f = block[ib];
+    for (int c = 0; c < CHANNELS; ++c) {
+      const frames even = load_frames(frames_of + ((2 * ib) * CHANNELS + c) * BATCH_PAD);
+      const frames odd = load_frames(frames_of + ((2 * ib + 1) * CHANNELS + c) * BATCH_PAD);
+      upper[c] += f.x * even + f.y * odd;
+      lower[c] += f.z * even + f.w * odd;
+    }
+  }
+  const uint j = 2 * pair;
+  for (int c = 0; c < CHANNELS; ++c) {
+    store_frames(upper[c],
+                 products + ((k * TERMS + j) * CHANNELS + c) * BATCH_PAD + vector * BATCH_WIDTH);
+    if (j + 1 < TERMS)
+      store_frames(lower[c], products + ((k * TERMS + j + 1) * CHANNELS + c) * BATCH_PAD +
+                                 vector * BATCH_WIDTH);
+  }
+}
+#endif
+
+// Adds the first min(slice width, cap) residual entries of `row` times the light vector.
+inline void add_residual(const uint row, const uint c, const uint cap,
+                         __global const uint* slice_offsets, __global const float* residual_values,
+                         __global const LIGHT_T* residual_lights, __global const float* light,
+                         frames* sums) {
+  const uint slice = row / SLICE_ROWS;
+  const uint begin = slice_offsets[slice] + row % SLICE_ROWS;
+  const uint used = min((slice_offsets[slice + 1] - slice_offsets[slice]) / SLICE_ROWS, cap);
+  for (uint e = 0; e < used; ++e) {
+    const float value = residual_values[begin + e * SLICE_ROWS];
+    __global const float* frames_of =
+        light + (residual_lights[begin + e * SLICE_ROWS] * CHANNELS + c) * BATCH_PAD;
+    for (int v = 0; v < BATCH_VECTORS; ++v)
+      sums[v] += value * load_frames(frames_of + v * BATCH_WIDTH);
+  }
+}
+
+inline void write_frames(const uint p, const uint frame_stride, const frames* sums,
+                         __global float* output) {
+#if BATCH == 1
+  output[p] = sums[0];
+#else
+  float lanes[BATCH_PAD];
+  for (int v = 0; v < BATCH_VECTORS; ++v) store_frames(sums[v], lanes + v * BATCH_WIDTH);
+  __global float* out = output + p;
+#pragma unroll
+  for (int b = 0; b < BATCH; ++b) out[b * frame_stride] = lanes[b];
+#endif
+}
+
+#if BATCH == 1 && ROW_VECTOR > 1
+#define ROW_CAT_(a, b) a##b
+#define ROW_CAT(a, b) ROW_CAT_(a, b)
+typedef ROW_CAT(float, ROW_VECTOR) row_floats;
+typedef ROW_CAT(uint, ROW_VECTOR) row_uints;
+// Gather indices are signed: 32-bit signed lanes let the compiler use dword-indexed gathers.
+typedef ROW_CAT(int, ROW_VECTOR) row_ints;
+#define load_rows(pointer) ROW_CAT(vload, ROW_VECTOR)(0, pointer)
+#define store_rows(value, pointer) ROW_CAT(vstore, ROW_VECTOR)(value, 0, pointer)
+#define to_row_ints(value) ROW_CAT(convert_int, ROW_VECTOR)(value)
+#if ROW_VECTOR == 4
+#define gather(base, i) (float4)(base[i.s0], base[i.s1], base[i.s2], base[i.s3])
+#elif ROW_VECTOR == 8
+#define gather(base, i)                                                                        \
+  (float8)(base[i.s0], base[i.s1], base[i.s2], base[i.s3], base[i.s4], base[i.s5], base[i.s6], \
+           base[i.s7])
+#elif ROW_VECTOR == 16
+#define gather(base, i)                                                                         \
+  (float16)(base[i.s0], base[i.s1], base[i.s2], base[i.s3], base[i.s4], base[i.s5], base[i.s6], \
+            base[i.s7], base[i.s8], base[i.s9], base[i.sa], base[i.sb], base[i.sc], base[i.sd], \
+            base[i.se], base[i.sf])
+#else
+#error "ROW_VECTOR must be 1, 4, 8 or 16"
+#endif
+
+// One residual entry of ROW_VECTOR rows times the light vector.
+inline row_floats residual_term(const uint entry, const row_ints c,
+                                __global const float* residual_values,
+                                __global const LIGHT_T* residual_lights,
+                                __global const float* light) {
+  const row_ints index = to_row_ints(load_rows(residual_lights + entry)) * CHANNELS + c;
+  return load_rows(residual_values + entry) * gather(light, index);
+}
+
+// Residual term of ROW_VECTOR rows starting at `first` (inside one slice).
+inline row_floats residual_of_rows(const uint first, const row_ints c, const uint cap,
+                                   __global const uint* slice_offsets,
+                                   __global const float* residual_values,
+                                   __global const LIGHT_T* residual_lights,
+                                   __global const float* light) {
+  const uint slice = first / SLICE_ROWS;
+  const uint begin = slice_offsets[slice] + first % SLICE_ROWS;
+  const uint used = min((slice_offsets[slice + 1] - slice_offsets[slice]) / SLICE_ROWS, cap);
+  // Two sums, so that consecutive entries' gathers and multiply-adds overlap.
+  row_floats even = (row_floats)(0.0f), odd = (row_floats)(0.0f);
+  uint e = 0;
+  for (; e + 1 < used; e += 2) {
+    even += residual_term(begin + e * SLICE_ROWS, c, residual_values, residual_lights, light);
+    odd += residual_term(begin + (e + 1) * SLICE_ROWS, c, residual_values, residual_lights, light);
+  }
+  if (e < used)
+    even += residual_term(begin + e * SLICE_ROWS, c, residual_values, residual_lights, light);
+  return even + odd;
+}
+
+// Writes ROW_VECTOR rows' outputs: one vector store when their functions are consecutive.
+inline void write_rows(const uint first, const uint rows, const row_uints p, const row_floats sums,
+                       __global float* output) {
+  uint functions_of[ROW_VECTOR];
+  store_rows(p, functions_of);
+  if (first + ROW_VECTOR <= rows &&
+      functions_of[ROW_VECTOR - 1] - functions_of[0] == ROW_VECTOR - 1) {
+    store_rows(sums, output + functions_of[0]);
+    return;
+  }
+  float values[ROW_VECTOR];
+  store_rows(sums, values);
+  for (int l = 0; l < ROW_VECTOR; ++l)
+    if (first + l < rows) output[functions_of[l]] = values[l];
+}
+
+__kernel void relight_rows(const uint rows, const uint frame_stride, const uint cap,
+                           __global const uint* stored_function, __global const CLUSTER_T* cluster,
+                           __global const float* weights, __global const float* products,
+                           __global const uint* slice_offsets,
+                           __global const float* residual_values,
+                           __global const LIGHT_T* residual_lights, __global const float* light,
+                           __global float* output) {
+  const uint first = get_global_id(0) * ROW_VECTOR;
+  if (first >= rows) return;
+  const row_uints p = load_rows(stored_function + first);
+  const row_ints c = to_row_ints(p % CHANNELS);
+  const row_ints product_index = to_row_ints(load_rows(cluster + first)) * (TERMS * CHANNELS) + c;
+  __global const float* row_weights =
+      weights + (first / SLICE_ROWS) * (TERMS * SLICE_ROWS) + first % SLICE_ROWS;
+  row_floats sums =
+      residual_of_rows(first, c, cap, slice_offsets, residual_values, residual_lights, light);
+  for (int j = 0; j < TERMS; ++j) {
+    const row_ints index = product_index + j * CHANNELS;
+    sums += load_rows(row_weights + j * SLICE_ROWS) * gather(products, index);
+  }
+  write_rows(first, rows, p, sums, output);
+}
+
+__kernel void residual_rows(const uint rows, const uint frame_stride, const uint cap,
+                            __global const uint* stored_function,
+                            __global const uint* slice_offsets,
+                            __global const float* residual_values,
+                            __global const LIGHT_T* residual_lights, __global const float* light,
+                            __global float* output) {
+  const uint first = get_global_id(0) * ROW_VECTOR;
+  if (first >= rows) return;
+  const row_uints p = load_rows(stored_function + first);
+  const row_floats sums = residual_of_rows(first, to_row_ints(p % CHANNELS), cap, slice_offsets,
+                                           residual_values, residual_lights, light);
+  write_rows(first, rows, p, sums, output);
+}
+
+#else
+
+__kernel void relight_rows(const uint rows, const uint frame_stride, const uint cap,
+                           __global const uint* stored_function, __global const CLUSTER_T* cluster,
+                           __global const float* weights, __global const float* products,
+                           __global const uint* slice_offsets,
+                           __global const float* residual_values,
+                           __global const LIGHT_T* residual_lights, __global const float* light,
+                           __global float* output) {
+  const uint row = get_global_id(0);
+  if (row >= rows) return;
+  const uint p = stored_function[row];
+  const uint c = p % CHANNELS;
+  __global const float* row_products =
+      products + ((uint)cluster[row] * TERMS * CHANNELS + c) * BATCH_PAD;
+  __global const float* row_weights =
+      weights + (row / SLICE_ROWS) * (TERMS * SLICE_ROWS) + row % SLICE_ROWS;
+  frames sums[BATCH_VECTORS];
+  for (int v = 0; v < BATCH_VECTORS; ++v) sums[v] = (frames)(0.0f);
+  for (int j = 0; j < TERMS; ++j) {
+    const float w = row_weights[j * SLICE_ROWS];
+    for (int v = 0; v < BATCH_VECTORS; ++v)
+      sums[v] += w * load_frames(row_products + j * CHANNELS * BATCH_PAD + v * BATCH_WIDTH);
+  }
+  add_residual(row, c, cap, slice_offsets, residual_values, residual_lights, light, sums);
+  write_frames(p, frame_stride, sums, output);
+}
+
+__kernel void residual_rows(const uint rows, const uint frame_stride, const uint cap,
+                            __global const uint* stored_function,
+                            __global const uint* slice_offsets,
+                            __global const float* residual_values,
+                            __global const LIGHT_T* residual_lights, __global const float* light,
+                            __global float* output) {
+  const uint row = get_global_id(0);
+  if (row >= rows) return;
+  const uint p = stored_function[row];
+  frames sums[BATCH_VECTORS];
+  for (int v = 0; v < BATCH_VECTORS; ++v) sums[v] = (frames)(0.0f);
+  add_residual(row, p % CHANNELS, cap, slice_offsets, residual_values, residual_lights, light,
+               sums);
+  write_frames(p, frame_stride, sums, output);
+}
+
+#endif
