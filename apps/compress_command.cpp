@@ -1,0 +1,279 @@
+// `relume compress`: clustered sparse residual factorization of one or more reflectance fields
+// into .relume containers, with a JSON report per run (lib/compression_report.hpp), checkpoints
+// after every clustering iteration (--resume continues an interrupted run) and, with several
+// inputs, one container per input in the output folder: a failing input is reported and the
+// others still run.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.hpp"
+#include "checkpoint.hpp"
+#include "clustered_factorization.hpp"
+#include "command_registry.hpp"
+#include "compression_report.hpp"
+#include "compression_target.hpp"
+#include "container.hpp"
+#include "error.hpp"
+#include "field_io.hpp"
+#include "opencl_assignment.hpp"
+#include "parallel.hpp"
+#include "progress.hpp"
+
+namespace relume {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct CompressArguments {
+  std::vector<std::string> inputs;
+  std::string output;
+  std::string report;
+  std::string residual = "5%";
+  std::string solver = "irls";
+  std::string transform = "identity";
+  std::string assign = "cpu";
+  std::string device;
+  std::string weights_precision = "float32";
+  std::string residual_precision = "float32";
+  double target_error = 0;
+  int irls_iterations = IrlsSettings{}.iterations;
+  bool resume = false;
+  bool quiet = false;
+  CompressionOptions options;
+};
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The settings that shape the clustering, with the input: a checkpoint is only resumed when its
+// fingerprint is the same.
+std::string fingerprint(const std::string& input, const CompressionOptions& options) {
+  const ClusteringOptions& clustering = options.clustering;
+  return nlohmann::json{{"input", fs::absolute(input).lexically_normal().string()},
+                        {"clusters", clustering.clusters},
+                        {"terms", clustering.terms},
+                        {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
+                        {"multires", options.multires_levels},
+                        {"candidates", clustering.candidates},
+                        {"min", clustering.sizes.minimum},
+                        {"max", clustering.sizes.maximum},
+                        {"seed", clustering.seed}}
+      .dump();
+}
+
+nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
+                                    const CompressArguments& arguments,
+                                    const CompressionOptions& base_options,
+                                    OpenClAssigner* opencl) {
+  const auto start = Clock::now();
+  CompressionOptions options = base_options;
+  if (opencl) options.clustering.assign = opencl->function();
+
+  FieldLoadOptions load;
+  load.threads = options.clustering.threads;
+  const ReflectanceField field = load_field(input, load);
+  const double load_seconds = seconds_since(start);
+  if (!options.clustering.quiet)
+    std::fprintf(stderr, "compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s\n",
+                 input.c_str(), field.width, field.height, field.channels, field.lights(),
+                 load_seconds);
+
+  const fs::path checkpoint = output.string() + ".checkpoint";
+  const std::string print = fingerprint(input, options);
+  std::optional<ClusteringResume> resume;
+  if (arguments.resume && fs::exists(checkpoint)) {
+    resume = read_checkpoint(checkpoint, print);
+    if (!options.clustering.quiet)
+      std::fprintf(stderr, "compress: resuming from %s (%zu iterations done)\n",
+                   checkpoint.c_str(), resume->iterations.size());
+  }
+  CompressionStats stats;
+  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord&) {
+    write_checkpoint(checkpoint, print, model, stats.clustering.iterations);
+  };
+
+  ContainerOptions container;
+  container.weights = parse_value_precision(arguments.weights_precision);
+  container.residual = parse_value_precision(arguments.residual_precision);
+
+  CompressedField compressed;
+  nlohmann::ordered_json target_choice;
+  if (arguments.target_error > 0) {
+    TargetSearch search = compress_to_target_error(field, options, arguments.target_error,
+                                                   container, stats);
+    compressed = std::move(search.field);
+    options = search.options;
+    target_choice = search.explanation;
+  } else {
+    compressed = compress_field(field, options, stats, hook, resume ? &*resume : nullptr);
+  }
+
+  const auto write_start = Clock::now();
+  container.parameters_json =
+      compression_parameters(options, stats, arguments.solver).dump();
+  write_container(output, compressed, container);
+  fs::remove(checkpoint);
+  const double write_seconds = seconds_since(write_start);
+
+  CompressionRun run;
+  run.input = input;
+  run.output = output.string();
+  run.field = &field;
+  run.compressed = &compressed;
+  run.options = &options;
+  run.stats = &stats;
+  run.layout = describe_container(output);
+  run.extra_seconds = {{"load", load_seconds}, {"write", write_seconds}};
+  run.threads = resolve_thread_count(options.clustering.threads);
+  run.solver = arguments.solver;
+  run.assignment_device = opencl ? opencl->device_label() : "cpu";
+  run.total_seconds = seconds_since(start);
+  nlohmann::ordered_json report = compression_report(run);
+  if (!target_choice.is_null()) report["target_error"] = target_choice;
+  std::printf("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
+              "%d clusters, %.1f s\n",
+              input.c_str(), output.c_str(),
+              static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
+              report["ratio"].get<double>(), report["error_all"].get<double>(),
+              report["error_masked"].get<double>(), stats.clusters, run.total_seconds);
+  return report;
+}
+
+// OUT/<input name>.relume for one of several inputs.
+fs::path output_for(const fs::path& folder, const std::string& input) {
+  fs::path name = fs::path(input).lexically_normal();
+  if (name.filename().empty()) name = name.parent_path();
+  const std::string stem = name.extension() == ".lp" ? name.stem().string() : name.filename().string();
+  return folder / (stem + ".relume");
+}
+
+void run_compress(CompressArguments& arguments) {
+  CompressionOptions options = arguments.options;
+  options.residual = parse_residual_budget(arguments.residual);
+  if (arguments.transform == "haar")
+    options.transform = BasisTransform::haar;
+  else if (arguments.transform != "identity")
+    throw Error("--transform must be 'identity' or 'haar', got '" + arguments.transform + "'");
+  if (arguments.solver != "irls") options.clustering.exact_refit = parse_l1_method(arguments.solver);
+  options.clustering.quiet = arguments.quiet || progress_quiet_by_environment();
+  if (arguments.irls_iterations < 0)
+    throw Error("--irls-iterations must be >= 0, got " + std::to_string(arguments.irls_iterations));
+  options.clustering.weight_fit.iterations = arguments.irls_iterations;
+  options.clustering.basis_fit.iterations = arguments.irls_iterations;
+  if (arguments.target_error < 0 || !std::isfinite(arguments.target_error))
+    throw Error("--target-error must be a relative error > 0, got " +
+                std::to_string(arguments.target_error));
+
+  std::unique_ptr<OpenClAssigner> opencl;
+  if (arguments.assign == "opencl")
+    opencl = std::make_unique<OpenClAssigner>(arguments.device, options.clustering.weight_fit);
+  else if (arguments.assign != "cpu")
+    throw Error("--assign must be 'cpu' or 'opencl', got '" + arguments.assign + "'");
+
+  const bool several = arguments.inputs.size() > 1;
+  if (several) fs::create_directories(arguments.output);
+  nlohmann::ordered_json reports = nlohmann::ordered_json::array();
+  nlohmann::ordered_json failures = nlohmann::ordered_json::array();
+  for (const std::string& input : arguments.inputs) {
+    const fs::path output = several ? output_for(arguments.output, input) : fs::path(arguments.output);
+    if (!several) {
+      reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
+      continue;
+    }
+    try {
+      reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "relume: compress: %s failed: %s\n", input.c_str(), e.what());
+      failures.push_back({{"input", input}, {"error", e.what()}});
+    }
+  }
+  if (!arguments.report.empty()) {
+    const nlohmann::ordered_json document =
+        several ? nlohmann::ordered_json{{"runs", reports}, {"failed", failures}} : reports[0];
+    write_file_atomically(arguments.report, document.dump(2) + "\n");
+  }
+  if (!failures.empty())
+    throw Error(std::to_string(failures.size()) + " of " + std::to_string(arguments.inputs.size()) +
+                " inputs failed (see the messages above)");
+}
+
+const CommandRegistration registration{20, [](CLI::App& app) {
+  auto arguments = std::make_shared<CompressArguments>();
+  CompressionOptions& options = arguments->options;
+  ClusteringOptions& clustering = options.clustering;
+  auto* command = app.add_subcommand(
+      "compress",
+      "Compress reflectance fields (field folders or .lp files) by clustered sparse residual\n"
+      "factorization into .relume containers, with an optional JSON report");
+  command->add_option("inputs", arguments->inputs, "Field folders or .lp files")->required();
+  command->add_option("-o,--output", arguments->output,
+                      "Output .relume file; with several inputs, a folder that receives one "
+                      "<input name>.relume per input")
+      ->required();
+  command->add_option("--clusters", clustering.clusters, "Clusters K")->capture_default_str();
+  command->add_option("--terms", clustering.terms, "Basis functions per cluster t (1 to 16)")
+      ->capture_default_str();
+  command->add_option("--residual", arguments->residual,
+                      "Residual entries kept per function: a count N or a percentage of the "
+                      "lights P% (default 5%)");
+  command->add_option("--threshold", options.residual_threshold,
+                      "Drop residual entries with |value| <= X, in field units (default 0)");
+  command->add_option("--solver", arguments->solver,
+                      "irls: the fast IRLS L1 fits only (default); lp-dual, lp or huber: refit "
+                      "every cluster's F and W exactly with that solver after the iterations");
+  command->add_option("--transform", arguments->transform,
+                      "Basis of the factorization: identity (default) or haar (orthonormal Haar "
+                      "wavelet over the light order; the residual is sparse in that basis)");
+  command->add_option("--multires", options.multires_levels,
+                      "Cluster a field downsampled 2x per level first, then assign full-resolution "
+                      "functions among the clusters near them (default 0: off)");
+  command->add_option("--refine", options.refine_iterations,
+                      "Full-resolution iterations after --multires clustering")
+      ->capture_default_str();
+  command->add_option("--iterations", clustering.max_iterations,
+                      "Cap on L1 iterations (F-step + reassignment); they stop earlier once "
+                      "fewer than 0.2% of the functions change cluster")
+      ->capture_default_str();
+  command->add_option("--candidates", clustering.candidates,
+                      "Clusters given the exact L1 fit per function, chosen by the smallest "
+                      "least-squares projection error")
+      ->capture_default_str();
+  command->add_option("--irls-iterations", arguments->irls_iterations,
+                      "Reweighted solves of every IRLS L1 fit (weights and bases)")
+      ->capture_default_str();
+  command->add_option("--min-cluster-size", clustering.sizes.minimum,
+                      "Clusters with fewer functions merge into their second-best cluster "
+                      "(default max(8, 2 x terms))");
+  command->add_option("--max-cluster-size", clustering.sizes.maximum,
+                      "Clusters with more functions split into two halves (default 0: no limit)");
+  command->add_option("--seed", clustering.seed, "Random seed of the cluster seeding")
+      ->capture_default_str();
+  command->add_option("--threads", clustering.threads, "Worker threads (default 0: all cores)");
+  command->add_option("--assign", arguments->assign,
+                      "Where the reassignment fits run: cpu (default) or opencl (--device)");
+  command->add_option("--device", arguments->device,
+                      "OpenCL device for --assign opencl: a substring of 'platform / device' "
+                      "(default RELUME_DEVICE, else the first GPU, else PoCL)");
+  command->add_option("--weights-precision", arguments->weights_precision,
+                      "Stored W: float32 (default) or float16");
+  command->add_option("--residual-precision", arguments->residual_precision,
+                      "Stored residual values: float32 (default) or float16");
+  command->add_option("--report", arguments->report,
+                      "Write a JSON report (times, iterations, bytes, errors, sparseness, memory)");
+  command->add_option("--target-error", arguments->target_error,
+                      "Choose terms, clusters and per-function residual lengths that reach this "
+                      "relative error (paper Eq. 16, masked functions) with the fewest bytes");
+  command->add_flag("--resume", arguments->resume,
+                    "Continue from OUT.checkpoint, written after every clustering iteration");
+  command->add_flag("-q,--quiet", arguments->quiet, "No progress output");
+  command->callback([arguments] { run_compress(*arguments); });
+}};
+
+}  // namespace
+}  // namespace relume

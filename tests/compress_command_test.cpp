@@ -1,0 +1,149 @@
+// Tests of `relume compress` (run as a command on fields written to disk) and of the checkpoints
+// it resumes from: containers and reports are written, a failing input does not stop the others,
+// and a resumed clustering continues where the checkpoint left it.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "checkpoint.hpp"
+#include "clustered_factorization.hpp"
+#include "container.hpp"
+#include "error.hpp"
+#include "field_io.hpp"
+#include "reconstruct_field.hpp"
+#include "test_support.hpp"
+
+namespace relume {
+namespace {
+
+// Two planted clusters (2 terms, 24 lights) with one residual entry per function; the left half
+// of the image is inside the mask.
+ReflectanceField small_field(std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<float> uniform(0.1f, 1.0f);
+  ReflectanceField field;
+  field.width = 16;
+  field.height = 12;
+  field.channels = 3;
+  const int lights = 24;
+  field.mask.assign(field.pixels(), 0);
+  for (int y = 0; y < field.height; ++y)
+    for (int x = 0; x < field.width / 2; ++x) field.mask[y * field.width + x] = 1;
+  field.directions.resize(lights, 3);
+  for (int i = 0; i < lights; ++i) {
+    const float angle = 6.2831853f * i / lights;
+    field.directions.row(i) << 0.6f * std::cos(angle), 0.6f * std::sin(angle), 0.8f;
+  }
+  field.intensities.setOnes(lights, 3);
+  RowMatrixF bases[2] = {RowMatrixF(2, lights), RowMatrixF(2, lights)};
+  for (auto& basis : bases)
+    for (int i = 0; i < basis.size(); ++i) basis.data()[i] = uniform(random);
+  field.values.resize(field.pixels() * field.channels, lights);
+  for (std::int64_t p = 0; p < field.functions(); ++p) {
+    Eigen::RowVector2f w(uniform(random), uniform(random));
+    field.values.row(p) = w * bases[(p / 3) % 2];
+    field.values(p, static_cast<int>(random() % lights)) += uniform(random);
+  }
+  for (int i = 0; i < lights; ++i) field.image_names.push_back(std::to_string(i + 1) + ".exr");
+  return field;
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(CompressCommand, WritesAContainerAndAReport) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(1));
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() +
+      "' --clusters 2 --terms 2 --residual 1 --threads 2 --report '" +
+      (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const CompressedField compressed = read_container(dir / "out.relume");
+  EXPECT_EQ(compressed.clusters, 2);
+  EXPECT_EQ(compressed.terms, 2);
+  EXPECT_EQ(compressed.stored_rows(), 16u * 12 / 2 * 3);  // the masked half
+  const nlohmann::json report = read_json(dir / "report.json");
+  for (const char* key : {"seconds", "bytes", "ratio", "error_all", "error_masked", "sections",
+                          "sparseness", "peak_memory_bytes", "clustering", "phases_seconds"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["bytes"].get<std::uint64_t>(), std::filesystem::file_size(dir / "out.relume"));
+  EXPECT_LT(report["error_masked"].get<double>(), 1e-4);
+  // Outside the mask nothing is stored: those functions count as fully lost in error_all.
+  EXPECT_GT(report["error_all"].get<double>(), 0.4);
+  EXPECT_FALSE(report["clustering"]["iterations"].empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.relume.checkpoint"));
+}
+
+TEST(CompressCommand, SeveralInputsGoToAFolderAndAFailureDoesNotStopTheOthers) {
+  testing::TempDir dir;
+  write_field_folder(dir / "first", small_field(2));
+  write_field_folder(dir / "second", small_field(3));
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "first").string() + "' '" + (dir / "missing").string() + "' '" +
+      (dir / "second").string() + "' -o '" + (dir / "out").string() +
+      "' --clusters 2 --terms 2 --residual 10% --threads 2 --report '" +
+      (dir / "report.json").string() + "'");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("missing"), std::string::npos) << result.output;
+  EXPECT_NO_THROW(read_container(dir / "out" / "first.relume"));
+  EXPECT_NO_THROW(read_container(dir / "out" / "second.relume"));
+  const nlohmann::json report = read_json(dir / "report.json");
+  EXPECT_EQ(report["runs"].size(), 2u);
+  ASSERT_EQ(report["failed"].size(), 1u);
+  EXPECT_NE(report["failed"][0]["input"].get<std::string>().find("missing"), std::string::npos);
+}
+
+TEST(CompressCommand, RefusesBadArguments) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(4));
+  const std::string base = "compress '" + (dir / "field").string() + "' -o '" +
+                           (dir / "out.relume").string() + "' ";
+  for (const char* bad : {"--residual 5%%", "--residual -2", "--terms 0", "--transform dct",
+                          "--solver simplex", "--assign fpga", "--terms 30"}) {
+    const auto result = testing::run_relume(base + bad);
+    EXPECT_NE(result.exit_code, 0) << bad;
+    EXPECT_NE(result.output.find("error"), std::string::npos) << bad << ": " << result.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.relume"));
+}
+
+TEST(CompressCheckpoint, ResumingContinuesTheIterationsOfTheCheckpoint) {
+  testing::TempDir dir;
+  const ReflectanceField field = small_field(5);
+  CompressionOptions options;
+  options.clustering.clusters = 2;
+  options.clustering.terms = 2;
+  options.clustering.quiet = true;
+  options.clustering.max_iterations = 3;
+  options.clustering.settle_fraction = -1;  // run every iteration
+  options.residual.entries = 1;
+
+  // An interrupted run: keep the checkpoint of the second iteration.
+  CompressionStats stats;
+  int calls = 0;
+  const auto checkpoint = dir / "run.checkpoint";
+  compress_field(field, options, stats, [&](const ClusterModel& model, const IterationRecord&) {
+    if (++calls == 2) write_checkpoint(checkpoint, "fingerprint", model, stats.clustering.iterations);
+  });
+  ASSERT_EQ(stats.clustering.iterations.size(), 4u);  // the first assignment and 3 iterations
+
+  const ClusteringResume resume = read_checkpoint(checkpoint, "fingerprint");
+  EXPECT_EQ(resume.iterations.size(), 2u);
+  CompressionStats resumed_stats;
+  const CompressedField resumed = compress_field(field, options, resumed_stats, {}, &resume);
+  ASSERT_EQ(resumed_stats.clustering.iterations.size(), 4u);
+  EXPECT_EQ(resumed_stats.clustering.iterations.back().iteration, 3);
+  EXPECT_LT(relative_error(field, resumed, true).mean, 1e-4);
+
+  EXPECT_THROW(read_checkpoint(checkpoint, "another input"), Error);
+  std::filesystem::resize_file(checkpoint, std::filesystem::file_size(checkpoint) - 4);
+  EXPECT_THROW(read_checkpoint(checkpoint, "fingerprint"), Error);
+}
+
+}  // namespace
+}  // namespace relume
