@@ -1,9 +1,12 @@
 // `relume relight`: renders one relit image of a reflectance field under a light vector file or
-// an environment map. An uncompressed field (folder or .lp) is relit by the double-precision
-// reference; this is the ground truth the compressed paths are tested against.
-#include <optional>
+// an environment map. A .relume container is relit with OpenCL (or the C++ reference with --cpu);
+// an uncompressed field (folder or .lp) by the double-precision reference, the ground truth the
+// compressed paths are tested against.
+#include <filesystem>
 
 #include "command_registry.hpp"
+#include "compressed_renderer.hpp"
+#include "container.hpp"
 #include "field_io.hpp"
 #include "field_relight.hpp"
 #include "image_io.hpp"
@@ -15,13 +18,25 @@ namespace {
 struct RelightOptions {
   std::string input;
   LightSourceOptions light_source;
+  RendererOptions renderer;
   std::string output;
   double exposure = 0;
   bool srgb_input = false;
   unsigned threads = 0;
 };
 
+void relight_container(const RelightOptions& options) {
+  const CompressedField field = read_container(options.input);
+  const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
+  CompressedRenderer renderer(field, options.renderer);
+  write_image(options.output, renderer.render({lights}).front(), {options.exposure});
+}
+
 void run_relight(const RelightOptions& options) {
+  if (std::filesystem::path(options.input).extension() == ".relume") {
+    relight_container(options);
+    return;
+  }
   FieldLoadOptions load;
   load.threads = options.threads;
   if (options.srgb_input) load.image.eight_bit = EightBitEncoding::srgb;
@@ -36,9 +51,11 @@ const CommandRegistration registration{30, [](CLI::App& app) {
   auto* command = app.add_subcommand(
       "relight", "Relight a reflectance field under an environment map or a light vector file");
   command->add_option("input", options->input,
-                      "Reflectance field: a folder (DiLiGenT layout) or an RTI .lp file")
+                      "A .relume container, or an uncompressed field: a folder (DiLiGenT layout) or an "
+                      "RTI .lp file")
       ->required();
   add_light_source_options(*command, options->light_source);
+  add_renderer_options(*command, options->renderer);
   command->add_option("-o,--output", options->output,
                       "Output image: .exr/.hdr/.tif are linear float, .png/.jpg are exposed and "
                       "sRGB-encoded")
@@ -46,7 +63,7 @@ const CommandRegistration registration{30, [](CLI::App& app) {
   command->add_option("--exposure", options->exposure,
                       "Exposure in stops applied to 8-bit outputs (default 0)");
   command->add_flag("--srgb", options->srgb_input,
-                    "Decode 8-bit input images as sRGB (default: 8-bit inputs are linear)");
+                    "Decode 8-bit input images of an uncompressed field as sRGB (default: linear)");
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->callback([options] { run_relight(*options); });
 }};
