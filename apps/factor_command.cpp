@@ -113,7 +113,7 @@ const CommandRegistration registration{
           ->check(CLI::PositiveNumber);
       command->add_option("--tolerance", f.relative_tolerance,
                           "Stop when the L1 objective drops by less than this fraction in an "
-                          "iteration (default 1e-6)");
+                          "iteration (default 1e-8)");
       command->add_option("--residual-threshold", options->residual_threshold,
                           "Residual entries with |E| <= this times the row's largest |R| are "
                           "set to 0 (default 1e-6 for float32 input, 1e-9 for float64)");

@@ -41,7 +41,7 @@ struct FactorizationOptions {
   std::uint64_t seed = 1;
   FactorizationInit init = FactorizationInit::random_basis;
   int max_iterations = 50;
-  double relative_tolerance = 1e-6;  // stop when the L1 objective drops by less than this fraction
+  double relative_tolerance = 1e-8;  // stop when the L1 objective drops by less than this fraction
   // |E[p, i]| <= residual_threshold * max_i |R[p, i]| is set to 0 (solver round-off).
   double residual_threshold = 1e-9;
   // Called after each iteration (1-based) with ||R - W F||_1; may be empty.
