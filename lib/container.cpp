@@ -375,6 +375,7 @@ class ContainerDecoder {
     CompressedField field;
     const DecodedHeader header = decode_header(field);
     decode_lights(field);
+    check_row_section_sizes(field, header);
     decode_mask(field);
     decode_functions(field, header);
     decode_clusters(field, header);
@@ -404,6 +405,20 @@ class ContainerDecoder {
       in.fail("has " + std::to_string(in.remaining()) + " bytes, the header implies " +
               std::to_string(expected));
     return in;
+  }
+
+  // The sections whose sizes follow from the header's row and entry counts, checked before anything
+  // is allocated: this bounds the stored rows and residual entries by the file's size.
+  void check_row_section_sizes(const CompressedField& field, const DecodedHeader& header) const {
+    const std::uint64_t rows = header.stored_rows;
+    sized_reader("clusters", {rows, std::uint64_t(header.widths.cluster_id_bytes)});
+    sized_reader("weights", {rows, std::uint64_t(field.terms),
+                             std::uint64_t(value_bytes(header.options.weights))});
+    sized_reader("residual_offsets", {rows, std::uint64_t(header.widths.residual_length_bytes)});
+    sized_reader("residual_indices",
+                 {header.nonzeros, std::uint64_t(header.widths.light_index_bytes)});
+    sized_reader("residual_values",
+                 {header.nonzeros, std::uint64_t(value_bytes(header.options.residual))});
   }
 
   DecodedHeader decode_header(CompressedField& field) const {
@@ -465,9 +480,7 @@ class ContainerDecoder {
 
   void decode_mask(CompressedField& field) const {
     ByteReader in = reader("mask");
-    field.mask.assign(std::size_t(field.width) * field.height, 0);
-    for (std::uint64_t q : decode_bit_set(in, field.mask.size(), field.mask.size()))
-      field.mask[q] = 1;
+    field.mask = decode_bit_mask(in, std::uint64_t(field.width) * field.height);
   }
 
   void decode_functions(CompressedField& field, const DecodedHeader& header) const {

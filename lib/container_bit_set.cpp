@@ -1,6 +1,8 @@
 // Implementation of the bitmap / run-length position sets (see container_bit_set.hpp).
 #include "container_bit_set.hpp"
 
+#include <algorithm>
+
 namespace relume {
 namespace {
 
@@ -29,18 +31,19 @@ std::string encode_runs(const std::vector<std::uint64_t>& positions, std::uint64
   return writer.take();
 }
 
-void check_count(ByteReader& reader, std::uint64_t count, std::uint64_t max_positions) {
-  if (count > max_positions)
-    reader.fail("holds more than the " + std::to_string(max_positions) + " positions expected");
-}
+// A present run of positions [start, start + length).
+struct PresentRun {
+  std::uint64_t start;
+  std::uint64_t length;
+};
 
-std::vector<std::uint64_t> decode_bitmap(ByteReader& reader, std::uint64_t universe,
-                                         std::uint64_t max_positions) {
+// The present runs of a bitmap (one run per set bit, merged with its predecessor when adjacent).
+std::vector<PresentRun> bitmap_runs(ByteReader& reader, std::uint64_t universe) {
   const std::uint64_t byte_count = (universe + 7) / 8;
   if (reader.remaining() != byte_count)
     reader.fail("the bitmap has " + std::to_string(reader.remaining()) + " bytes, expected " +
                 std::to_string(byte_count) + " for " + std::to_string(universe) + " bits");
-  std::vector<std::uint64_t> positions;
+  std::vector<PresentRun> runs;
   for (std::uint64_t b = 0; b < byte_count; ++b) {
     const std::uint8_t byte = reader.u8();
     for (int bit = 0; bit < 8; ++bit) {
@@ -49,16 +52,18 @@ std::vector<std::uint64_t> decode_bitmap(ByteReader& reader, std::uint64_t unive
       if (q >= universe)
         reader.fail("bit " + std::to_string(q) + " is set beyond the " + std::to_string(universe) +
                     " bits of the bitmap");
-      check_count(reader, positions.size() + 1, max_positions);
-      positions.push_back(q);
+      if (!runs.empty() && runs.back().start + runs.back().length == q)
+        ++runs.back().length;
+      else
+        runs.push_back({q, 1});
     }
   }
-  return positions;
+  return runs;
 }
 
-std::vector<std::uint64_t> decode_runs(ByteReader& reader, std::uint64_t universe,
-                                       std::uint64_t max_positions) {
-  std::vector<std::uint64_t> positions;
+// The present runs of a run-length set; their number is bounded by the section's bytes.
+std::vector<PresentRun> length_runs(ByteReader& reader, std::uint64_t universe) {
+  std::vector<PresentRun> runs;
   std::uint64_t covered = 0;
   bool present = false;
   bool first = true;
@@ -67,10 +72,7 @@ std::vector<std::uint64_t> decode_runs(ByteReader& reader, std::uint64_t univers
     if (length == 0 && !first) reader.fail("a run after the first has length 0");
     if (length > universe - covered)
       reader.fail("the runs cover more than the " + std::to_string(universe) + " positions");
-    if (present) {
-      check_count(reader, positions.size() + length, max_positions);
-      for (std::uint64_t q = covered; q < covered + length; ++q) positions.push_back(q);
-    }
+    if (present) runs.push_back({covered, length});
     covered += length;
     present = !present;
     first = false;
@@ -78,7 +80,20 @@ std::vector<std::uint64_t> decode_runs(ByteReader& reader, std::uint64_t univers
   if (covered != universe)
     reader.fail("the runs cover " + std::to_string(covered) + " positions, expected " +
                 std::to_string(universe));
-  return positions;
+  return runs;
+}
+
+// Every present run of the set, validated, before anything of the universe's size is allocated.
+std::vector<PresentRun> present_runs(ByteReader& reader, std::uint64_t universe) {
+  const std::uint8_t encoding = reader.u8();
+  switch (encoding) {
+    case static_cast<std::uint8_t>(BitSetEncoding::bitmap):
+      return bitmap_runs(reader, universe);
+    case static_cast<std::uint8_t>(BitSetEncoding::runs):
+      return length_runs(reader, universe);
+  }
+  reader.fail("unknown set encoding " + std::to_string(encoding) +
+              " (expected 0 = bitmap or 1 = runs)");
 }
 
 }  // namespace
@@ -91,15 +106,25 @@ std::string encode_bit_set(const std::vector<std::uint64_t>& positions, std::uin
 
 std::vector<std::uint64_t> decode_bit_set(ByteReader& reader, std::uint64_t universe,
                                           std::uint64_t max_positions) {
-  const std::uint8_t encoding = reader.u8();
-  switch (encoding) {
-    case static_cast<std::uint8_t>(BitSetEncoding::bitmap):
-      return decode_bitmap(reader, universe, max_positions);
-    case static_cast<std::uint8_t>(BitSetEncoding::runs):
-      return decode_runs(reader, universe, max_positions);
-  }
-  reader.fail("unknown set encoding " + std::to_string(encoding) +
-              " (expected 0 = bitmap or 1 = runs)");
+  const std::vector<PresentRun> runs = present_runs(reader, universe);
+  std::uint64_t count = 0;
+  for (const PresentRun& run : runs) count += run.length;
+  if (count > max_positions)
+    reader.fail("holds " + std::to_string(count) + " positions, more than the " +
+                std::to_string(max_positions) + " expected");
+  std::vector<std::uint64_t> positions;
+  positions.reserve(count);
+  for (const PresentRun& run : runs)
+    for (std::uint64_t q = run.start; q < run.start + run.length; ++q) positions.push_back(q);
+  return positions;
+}
+
+std::vector<std::uint8_t> decode_bit_mask(ByteReader& reader, std::uint64_t universe) {
+  const std::vector<PresentRun> runs = present_runs(reader, universe);
+  std::vector<std::uint8_t> mask(universe, 0);
+  for (const PresentRun& run : runs)
+    std::fill_n(mask.begin() + std::ptrdiff_t(run.start), run.length, std::uint8_t(1));
+  return mask;
 }
 
 }  // namespace relume

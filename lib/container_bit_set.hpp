@@ -25,4 +25,8 @@ std::string encode_bit_set(const std::vector<std::uint64_t>& positions, std::uin
 std::vector<std::uint64_t> decode_bit_set(ByteReader& reader, std::uint64_t universe,
                                           std::uint64_t max_positions);
 
+// The same set as one byte per position (1 = present); the section is validated in full before
+// the universe-sized mask is allocated.
+std::vector<std::uint8_t> decode_bit_mask(ByteReader& reader, std::uint64_t universe);
+
 }  // namespace relume

@@ -455,6 +455,16 @@ TEST(Container, ContentsThatContradictTheHeaderAreRefusedNamingTheSection) {
   ASSERT_NE(lights_key, std::string::npos);
   bytes[lights_key + 10] = '9';  // "lights":19: the lights section is now the wrong size
   expect_refused(bytes, "lights", "the header implies");
+
+  // More stored rows than the per-row sections hold: refused by their sizes, before the functions
+  // set is decoded (the sizes bound what a crafted header can make the reader allocate).
+  bytes = original;
+  const std::size_t rows_key = bytes.find("\"stored_rows\":", header);
+  ASSERT_NE(rows_key, std::string::npos);
+  ASSERT_TRUE(field.stored_rows() >= 10 && field.stored_rows() < 89)
+      << "the edit below assumes a two-digit row count";
+  bytes.replace(rows_key + 14, 2, "89");
+  expect_refused(bytes, "clusters", "the header implies");
 }
 
 TEST(Container, WriteRefusesInconsistentFieldsAndLeavesNoFile) {
