@@ -112,6 +112,42 @@ TEST(CompressCommand, RefusesBadArguments) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.relume"));
 }
 
+// The error that compress reports, recomputed from the decompressed images by
+// scripts/check_error.py (NumPy and OpenImageIO's Python bindings, none of relume's code).
+TEST(CompressCommand, ReportedErrorMatchesAnIndependentCheckOnRealData) {
+  RELUME_REQUIRE_SHARED_DATA(data);
+  const std::string python = "/usr/bin/python3";
+  if (testing::run_command(python + " -c 'import numpy, OpenImageIO'").exit_code != 0)
+    GTEST_SKIP() << python << " lacks numpy or OpenImageIO (python3-numpy, python3-openimageio)";
+  testing::TempDir dir;
+  const std::string bear = (data / "olat/diligent-bear-crop8").string();
+  auto result = testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
+                                    "' --clusters 16 --terms 3 --residual 4 --iterations 2 "
+                                    "--report '" + (dir / "b.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  result = testing::run_relume("decompress '" + (dir / "b.relume").string() + "' -o '" +
+                               (dir / "decompressed").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  result = testing::run_command(python + " '" +
+                                (testing::source_dir() / "scripts/check_error.py").string() +
+                                "' '" + bear + "' '" + (dir / "decompressed").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+
+  const nlohmann::json report = read_json(dir / "b.json");
+  const std::string label = "error_masked (Eq. 16): ";
+  const std::size_t at = result.output.find(label);
+  ASSERT_NE(at, std::string::npos) << result.output;
+  const double independent = std::stod(result.output.substr(at + label.size()));
+  const double reported = report["error_masked"].get<double>();
+  EXPECT_GT(reported, 1e-4) << "a lossy setting, so the comparison means something";
+  EXPECT_NEAR(independent, reported, 1e-4 * reported) << result.output;
+  const auto& detail = report["error_masked_detail"];
+  const std::string functions = "functions inside the mask: " +
+                                std::to_string(detail["functions_averaged"].get<int>() +
+                                               detail["zero_energy_skipped"].get<int>());
+  EXPECT_NE(result.output.find(functions), std::string::npos) << result.output;
+}
+
 TEST(CompressCheckpoint, ResumingContinuesTheIterationsOfTheCheckpoint) {
   testing::TempDir dir;
   const ReflectanceField field = small_field(5);

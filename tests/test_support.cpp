@@ -33,10 +33,9 @@ TempDir::~TempDir() {
   fs::remove_all(path_, ignored);
 }
 
-CommandResult run_relume(const std::string& arguments) {
-  const std::string command = std::string("RELUME_QUIET=1 '") + RELUME_BINARY + "' " + arguments + " 2>&1";
+CommandResult run_command(const std::string& command) {
   CommandResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
   if (!pipe) {
     result.exit_code = -1;
     return result;
@@ -47,6 +46,10 @@ CommandResult run_relume(const std::string& arguments) {
   const int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+CommandResult run_relume(const std::string& arguments) {
+  return run_command(std::string("RELUME_QUIET=1 '") + RELUME_BINARY + "' " + arguments);
 }
 
 }  // namespace relume::testing

@@ -1,5 +1,5 @@
 // Helpers shared by the tests: the real-data folder (RELUME_DATA or ../shared/data), a fresh
-// temporary folder per test, and running the built `relume` binary.
+// temporary folder per test, and running commands and the built `relume` binary.
 #pragma once
 
 #include <gmock/gmock.h>
@@ -43,7 +43,13 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
+// Runs a shell command line.
+CommandResult run_command(const std::string& command);
+
 // Runs the built relume binary with the given arguments (shell-quoted here).
 CommandResult run_relume(const std::string& arguments);
+
+// The repository's root folder (for its scripts).
+inline std::filesystem::path source_dir() { return RELUME_SOURCE_DIR; }
 
 }  // namespace relume::testing
