@@ -20,6 +20,8 @@
 namespace relume {
 namespace {
 
+using testing::error_message;
+
 using ::testing::HasSubstr;
 constexpr double pi = std::numbers::pi;
 
@@ -43,15 +45,6 @@ void write_raw_exr(const std::filesystem::path& path, int width, int height,
       output->open(path.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)));
   ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
   ASSERT_TRUE(output->close());
-}
-
-std::string error_message(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no relume::Error thrown)";
 }
 
 const MapGeometry kLatlong{EnvironmentLayout::latlong, 64, 32};

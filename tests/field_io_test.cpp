@@ -36,12 +36,7 @@ void write_small_folder(const fs::path& dir) {
 }
 
 std::string load_error(const fs::path& path) {
-  try {
-    load_field(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::error_message([&] { load_field(path); });
 }
 
 TEST(FieldIo, LoadsFolderAndDividesByIntensity) {
@@ -80,7 +75,8 @@ TEST(FieldIo, SixteenBitPngIsReadAtSixteenBits) {
   std::ofstream(dir / "f/light_directions.txt") << "0 0 1\n";
   const std::uint16_t values[2] = {1, 65535};
   auto out = OIIO::ImageOutput::create((dir / "f/001.png").string());
-  ASSERT_TRUE(out->open((dir / "f/001.png").string(), OIIO::ImageSpec(2, 1, 1, OIIO::TypeDesc::UINT16)));
+  ASSERT_TRUE(
+      out->open((dir / "f/001.png").string(), OIIO::ImageSpec(2, 1, 1, OIIO::TypeDesc::UINT16)));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, values));
   out->close();
   const ReflectanceField field = load_field(dir / "f");
@@ -95,7 +91,8 @@ TEST(FieldIo, EightBitIsLinearByDefaultAndSrgbOnRequest) {
   std::ofstream(dir / "f/light_directions.txt") << "0 0 1\n";
   const std::uint8_t value = 128;
   auto out = OIIO::ImageOutput::create((dir / "f/001.png").string());
-  ASSERT_TRUE(out->open((dir / "f/001.png").string(), OIIO::ImageSpec(1, 1, 1, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(
+      out->open((dir / "f/001.png").string(), OIIO::ImageSpec(1, 1, 1, OIIO::TypeDesc::UINT8)));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, &value));
   out->close();
   EXPECT_FLOAT_EQ(load_field(dir / "f").values(0, 0), 128.0f / 255.0f);
@@ -154,9 +151,8 @@ TEST(FieldIoBadInput, ImagesOfDifferentSizeOrChannels) {
   EXPECT_THAT(load_error(dir.path()),
               ::testing::AllOf(::testing::HasSubstr("c.exr is 5x3"), ::testing::HasSubstr("4x3")));
   write_image(dir / "c.exr", gradient_image(4, 3, 1, 1));
-  EXPECT_THAT(load_error(dir.path()),
-              ::testing::AllOf(::testing::HasSubstr("c.exr has 1 channels"),
-                               ::testing::HasSubstr("has 3")));
+  EXPECT_THAT(load_error(dir.path()), ::testing::AllOf(::testing::HasSubstr("c.exr has 1 channels"),
+                                                       ::testing::HasSubstr("has 3")));
 }
 
 TEST(FieldIoBadInput, LightCountDoesNotMatchImages) {
@@ -190,8 +186,8 @@ TEST(FieldIoBadInput, NonFinitePixelIsNamed) {
   ASSERT_TRUE(out->open((dir / "b.exr").string(), OIIO::ImageSpec(4, 3, 3, OIIO::TypeDesc::FLOAT)));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()));
   out->close();
-  EXPECT_THAT(load_error(dir.path()),
-              ::testing::AllOf(::testing::HasSubstr("b.exr"), ::testing::HasSubstr("pixel (2, 1)")));
+  EXPECT_THAT(load_error(dir.path()), ::testing::AllOf(::testing::HasSubstr("b.exr"),
+                                                       ::testing::HasSubstr("pixel (2, 1)")));
 }
 
 TEST(FieldIoBadInput, NotAFieldAndUnreadableImage) {
@@ -208,9 +204,9 @@ TEST(FieldIoBadInput, CliExitsNonZeroAndWritesNothing) {
   write_small_folder(dir / "f");
   std::ofstream(dir / "f/light_directions.txt") << "0 0 1\n1 0 0\n";
   std::ofstream(dir / "l.txt") << "1 1 1\n1 1 1\n1 1 1\n";
-  const auto result = testing::run_relume("relight '" + (dir / "f").string() + "' --lights '" +
-                                          (dir / "l.txt").string() + "' -o '" +
-                                          (dir / "out.exr").string() + "'");
+  const auto result =
+      testing::run_relume("relight '" + (dir / "f").string() + "' --lights '" +
+                          (dir / "l.txt").string() + "' -o '" + (dir / "out.exr").string() + "'");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_THAT(result.output, ::testing::HasSubstr("2 light directions but 3 images"));
   EXPECT_FALSE(fs::exists(dir / "out.exr"));

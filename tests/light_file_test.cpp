@@ -10,20 +10,14 @@ namespace relume {
 namespace {
 using testing::TempDir;
 
-std::filesystem::path write_text(const TempDir& dir, const std::string& name, const std::string& text) {
+std::filesystem::path write_text(const TempDir& dir, const std::string& name,
+                                 const std::string& text) {
   const auto path = dir / name;
   std::ofstream(path) << text;
   return path;
 }
 
-std::string error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::function<void()>& action) { return testing::error_message(action); }
 
 TEST(LightFile, PlainRowsAreNormalised) {
   TempDir dir;
@@ -37,8 +31,8 @@ TEST(LightFile, PlainRowsAreNormalised) {
 
 TEST(LightFile, LpWithDecimalCommasAndSpacesInNames) {
   TempDir dir;
-  const auto path = write_text(dir, "set.lp",
-                               "2\nimg/first shot.jpg 0,6 0,8 0\nimg/b.jpg  0 0 1\n");
+  const auto path =
+      write_text(dir, "set.lp", "2\nimg/first shot.jpg 0,6 0,8 0\nimg/b.jpg  0 0 1\n");
   const LpFile lp = read_lp_file(path);
   ASSERT_EQ(lp.images.size(), 2u);
   EXPECT_EQ(lp.images[0], "img/first shot.jpg");
@@ -62,11 +56,13 @@ TEST(LightFile, ErrorsNameFileLineAndValue) {
   EXPECT_THAT(error_of([&] { read_direction_rows(bad_number); }),
               ::testing::AllOf(::testing::HasSubstr("a.txt:2"), ::testing::HasSubstr("'zero'")));
   const auto zero = write_text(dir, "b.txt", "0 0 1\n\n0 0 0\n");
-  EXPECT_THAT(error_of([&] { read_direction_rows(zero); }),
-              ::testing::AllOf(::testing::HasSubstr("b.txt:3"), ::testing::HasSubstr("zero length")));
+  EXPECT_THAT(
+      error_of([&] { read_direction_rows(zero); }),
+      ::testing::AllOf(::testing::HasSubstr("b.txt:3"), ::testing::HasSubstr("zero length")));
   const auto infinite = write_text(dir, "c.txt", "0 inf 1\n");
-  EXPECT_THAT(error_of([&] { read_direction_rows(infinite); }),
-              ::testing::AllOf(::testing::HasSubstr("c.txt:1"), ::testing::HasSubstr("not finite")));
+  EXPECT_THAT(
+      error_of([&] { read_direction_rows(infinite); }),
+      ::testing::AllOf(::testing::HasSubstr("c.txt:1"), ::testing::HasSubstr("not finite")));
   const auto nan = write_text(dir, "d.txt", "nan 0 1\n");
   EXPECT_THAT(error_of([&] { read_direction_rows(nan); }), ::testing::HasSubstr("not finite"));
   const auto two_fields = write_text(dir, "e.txt", "0 1\n");

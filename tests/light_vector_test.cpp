@@ -22,6 +22,8 @@
 namespace relume {
 namespace {
 
+using testing::error_message;
+
 using ::testing::HasSubstr;
 constexpr double pi = std::numbers::pi;
 
@@ -87,15 +89,6 @@ int lit_light(const LightVector& vector) {
     lit = int(i);
   }
   return lit;
-}
-
-std::string error_message(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no relume::Error thrown)";
 }
 
 const MapGeometry kLayouts[] = {{EnvironmentLayout::latlong, 512, 256},

@@ -72,12 +72,7 @@ Eigen::MatrixXd expected_matrix() {
 }
 
 std::string error_of(const std::string& bytes) {
-  try {
-    parse_npy_matrix(bytes, "input.npy");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::error_message([&] { parse_npy_matrix(bytes, "input.npy"); });
 }
 
 TEST(Npy, ReadsEveryLayoutNumpyWrites) {

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <random>
 
+#include "error.hpp"
+
 namespace relume::testing {
 namespace fs = std::filesystem;
 
@@ -31,6 +33,15 @@ TempDir::TempDir() {
 TempDir::~TempDir() {
   std::error_code ignored;
   fs::remove_all(path_, ignored);
+}
+
+std::string error_message(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no relume::Error thrown)";
 }
 
 CommandResult run_command(const std::string& command) {

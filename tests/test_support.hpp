@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -15,11 +16,11 @@ namespace relume::testing {
 std::optional<std::filesystem::path> shared_data_dir();
 
 // Skips the current test, saying which folder was missing and how to point at it.
-#define RELUME_REQUIRE_SHARED_DATA(var)                                                       \
-  const auto var##_opt = ::relume::testing::shared_data_dir();                               \
-  if (!var##_opt)                                                                             \
-    GTEST_SKIP() << "shared data not found at " << ::relume::testing::shared_data_hint()      \
-                 << " (set RELUME_DATA to the folder that holds olat/ and envmaps/)";         \
+#define RELUME_REQUIRE_SHARED_DATA(var)                                                  \
+  const auto var##_opt = ::relume::testing::shared_data_dir();                           \
+  if (!var##_opt)                                                                        \
+    GTEST_SKIP() << "shared data not found at " << ::relume::testing::shared_data_hint() \
+                 << " (set RELUME_DATA to the folder that holds olat/ and envmaps/)";    \
   const std::filesystem::path var = *var##_opt
 
 std::string shared_data_hint();
@@ -42,6 +43,9 @@ struct CommandResult {
   int exit_code = 0;
   std::string output;  // stdout and stderr together
 };
+
+// The message of the relume::Error that `action` throws, or "(no relume::Error thrown)".
+std::string error_message(const std::function<void()>& action);
 
 // Runs a shell command line.
 CommandResult run_command(const std::string& command);
