@@ -22,6 +22,7 @@
 #include "opencl_assignment.hpp"
 #include "parallel.hpp"
 #include "progress.hpp"
+#include "reconstruct_field.hpp"
 
 namespace relume {
 namespace {
@@ -120,12 +121,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   write_container(output, compressed, container);
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
+  // The report measures what the file holds: half precision rounds W and the residual values.
+  const CompressedField stored = read_container(output);
 
   CompressionRun run;
   run.input = input;
   run.output = output.string();
   run.field = &field;
-  run.compressed = &compressed;
+  run.compressed = &stored;
   run.options = &options;
   run.stats = &stats;
   run.layout = describe_container(output);
@@ -136,6 +139,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
   if (!target_choice.is_null()) report["target_error"] = target_choice;
+  if (container.weights != ValuePrecision::float32 || container.residual != ValuePrecision::float32)
+    report["precision_cost"] = {
+        {"weights", to_string(container.weights)},
+        {"residual_values", to_string(container.residual)},
+        {"error_masked_stored", report["error_masked"]},
+        {"error_masked_float32",
+         relative_error(field, compressed, true, all_residual_entries, run.threads).mean},
+        {"quantization_error", quantization_error(compressed, container).mean}};
   std::printf("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
               "%d clusters, %.1f s\n",
               input.c_str(), output.c_str(),

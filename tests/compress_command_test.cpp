@@ -77,6 +77,30 @@ TEST(CompressCommand, WritesAContainerAndAReport) {
   EXPECT_GT(report["error_all"].get<double>(), 0.4);
   EXPECT_FALSE(report["clustering"]["iterations"].empty());
   EXPECT_FALSE(std::filesystem::exists(dir / "out.relume.checkpoint"));
+  EXPECT_FALSE(report.contains("precision_cost")) << "float32 costs nothing";
+}
+
+TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostReported) {
+  testing::TempDir dir;
+  const ReflectanceField field = small_field(2);
+  write_field_folder(dir / "field", field);
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "half.relume").string() +
+      "' --clusters 2 --terms 2 --residual 1 --weights-precision float16 "
+      "--residual-precision float16 --report '" + (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report = read_json(dir / "report.json");
+  const double stored_error =
+      relative_error(field, read_container(dir / "half.relume"), true).mean;
+  EXPECT_NEAR(report["error_masked"].get<double>(), stored_error, 1e-12);
+  const nlohmann::json& cost = report["precision_cost"];
+  EXPECT_EQ(cost["weights"], "float16");
+  EXPECT_EQ(cost["residual_values"], "float16");
+  EXPECT_EQ(cost["error_masked_stored"].get<double>(), report["error_masked"].get<double>());
+  // Half precision keeps about 3 decimal digits: the float32 factorization is more accurate.
+  EXPECT_LT(cost["error_masked_float32"].get<double>(), stored_error);
+  EXPECT_GT(cost["quantization_error"].get<double>(), 1e-9);
+  EXPECT_LT(cost["quantization_error"].get<double>(), 1e-5);
 }
 
 TEST(CompressCommand, SeveralInputsGoToAFolderAndAFailureDoesNotStopTheOthers) {
