@@ -7,10 +7,11 @@
 
 namespace relume {
 
+// Exactly one of `relighter` (with its context) and `reference` is set.
 struct CompressedRenderer::Backend {
-  const CompressedField& field;
   std::unique_ptr<OpenClContext> context;
   std::unique_ptr<OpenClRelighter> relighter;
+  std::unique_ptr<CompressedRelightReference> reference;
 };
 
 void add_renderer_options(CLI::App& command, RendererOptions& options) {
@@ -26,7 +27,7 @@ void add_renderer_options(CLI::App& command, RendererOptions& options) {
 }
 
 CompressedRenderer::CompressedRenderer(const CompressedField& field, const RendererOptions& options)
-    : backend_(std::make_unique<Backend>(Backend{field, nullptr, nullptr})),
+    : backend_(std::make_unique<Backend>()),
       residual_cap_(options.residual == "all"
                         ? full_residual
                         : parse_residual_budget(options.residual).entries_for(field.lights)) {
@@ -34,7 +35,7 @@ CompressedRenderer::CompressedRenderer(const CompressedField& field, const Rende
     backend_->context = std::make_unique<OpenClContext>(select_opencl_device(options.device));
     backend_->relighter = std::make_unique<OpenClRelighter>(*backend_->context, field);
   } else {
-    check_relightable(field);
+    backend_->reference = std::make_unique<CompressedRelightReference>(field);  // checks it once
   }
 }
 
@@ -48,7 +49,7 @@ std::vector<Image> CompressedRenderer::render(const std::vector<LightRgb>& light
   if (backend_->relighter) return backend_->relighter->relight_batch(lights, cap);
   std::vector<Image> images;
   for (const auto& light : lights)
-    images.push_back(relight_compressed_reference(backend_->field, light, cap));
+    images.push_back(backend_->reference->relight(light, cap));
   return images;
 }
 
