@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Compression benchmarks of docs/compression.md: runs `relume compress` on the shared real data
-# (and a synthetic 640x640, 253-light scene) with 2 threads and prints the key figures of each
-# JSON report. Usage: scripts/bench_compression.sh [BUILD_DIR] [OUT_DIR]
+# (and a synthetic 640x640, 253-light scene) with 2 threads, prints the key figures of each JSON
+# report, and checks one reported error independently (scripts/check_error.py). About 20 minutes
+# on 2 cores. Usage: scripts/bench_compression.sh [BUILD_DIR] [OUT_DIR]
 # RELUME_DATA overrides the data folder (default ../shared/data next to the repository).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -24,13 +25,15 @@ print(f"  seconds {r['seconds']:.1f}  bytes {r['bytes']}  ratio {r['ratio']:.4f}
 print(f"  masked error by residual entries {prefix}")
 print(f"  phases {phases}")
 print(f"  clustering {clustering}")
+if "target_error" in r:
+    print(f"  target_error choice {json.dumps(r['target_error'])}")
 print(f"  sparseness {[(s['threshold_relative_to_norm'], round(s['fraction_at_or_below'], 3)) for s in r['sparseness']]}")
 PY
 }
 
 run() {
   local name="$1"; shift
-  echo "== $name: relume compress $*"
+  echo "== $name: relume compress $* (load average $(cut -d' ' -f1 /proc/loadavg))"
   RELUME_QUIET=1 "$relume" compress "$@" --threads 2 -o "$out/$name.relume" --report "$out/$name.json"
   summary "$out/$name.json"
 }
@@ -44,11 +47,17 @@ run harvest-8-iterations "$harvest" --clusters 64 --terms 4 --residual 10 --iter
 run harvest-haar "$harvest" --clusters 64 --terms 4 --residual 10 --transform haar
 run harvest-multires "$harvest" --clusters 64 --terms 4 --residual 10 --multires 1
 run harvest-opencl "$harvest" --clusters 64 --terms 4 --residual 10 --assign opencl
-run harvest-lp-dual "$harvest" --clusters 64 --terms 4 --residual 10 --solver lp-dual
+run ball-lp-dual "$ball" --clusters 64 --terms 4 --residual 5% --solver lp-dual
+run ball-target "$ball" --target-error 0.0005
+
+echo "== independent check of the harvest run's error (scripts/check_error.py)"
+"$relume" decompress "$out/harvest.relume" -o "$out/harvest-decompressed" > /dev/null
+/usr/bin/python3 "$root/scripts/check_error.py" "$harvest" "$out/harvest-decompressed"
 
 if [[ "${SKIP_SYNTH:-0}" != 1 ]]; then
   synth="$out/synth-640"
   [[ -f "$synth/filenames.txt" ]] || "$relume" synth -o "$synth" --size 640x640 --lights 253
   run synth-640 "$synth" --clusters 128 --terms 4 --residual 5%
   run synth-640-multires "$synth" --clusters 128 --terms 4 --residual 5% --multires 1
+  run synth-640-multires-haar "$synth" --clusters 128 --terms 4 --residual 5% --multires 1 --transform haar
 fi
