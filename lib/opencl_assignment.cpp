@@ -2,14 +2,17 @@
 #include "opencl_assignment.hpp"
 
 #include <cstdio>
+#include <utility>
 
 #include "error.hpp"
 
 namespace relume {
 
 OpenClAssigner::OpenClAssigner(const std::string& device_selector, const IrlsSettings& settings)
-    : context_(std::make_unique<OpenClContext>(select_opencl_device(device_selector))),
-      settings_(settings) {}
+    : OpenClAssigner(select_opencl_device(device_selector), settings) {}
+
+OpenClAssigner::OpenClAssigner(OpenClDevice device, const IrlsSettings& settings)
+    : context_(std::make_unique<OpenClContext>(std::move(device))), settings_(settings) {}
 
 OpenClAssigner::~OpenClAssigner() = default;
 

@@ -17,6 +17,8 @@ class OpenClAssigner {
  public:
   // device_selector: see select_opencl_device ("" = RELUME_DEVICE, else the default device).
   OpenClAssigner(const std::string& device_selector, const IrlsSettings& settings);
+  // device: one of list_opencl_devices(), for example to run on each device in turn.
+  OpenClAssigner(OpenClDevice device, const IrlsSettings& settings);
   ~OpenClAssigner();
 
   AssignmentResult assign(const WorkingRows& rows, const ClusterModel& model,

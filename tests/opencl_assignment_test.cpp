@@ -3,52 +3,19 @@
 // and weights agree to float precision.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "cluster_assignment.hpp"
 #include "opencl_assignment.hpp"
+#include "random_assignment_problem.hpp"
 
 namespace relume {
 namespace {
 
-struct RandomProblem {
-  WorkingRows rows;
-  ClusterModel model;
-  CandidateLists candidates;
-};
-
-RandomProblem random_problem(int rows, int clusters, int terms, int lights, int width,
-                             std::uint64_t seed) {
-  std::mt19937_64 random(seed);
-  std::normal_distribution<float> normal;
-  RandomProblem problem;
-  problem.model.terms = terms;
-  problem.model.lights = lights;
-  problem.model.clusters = clusters;
-  for (int i = 0; i < clusters * terms * lights; ++i) problem.model.bases.push_back(normal(random));
-  problem.rows.values.resize(rows, lights);
-  problem.rows.norms.assign(rows, 1.0f);
-  for (int r = 0; r < rows; ++r) {
-    // Mostly near one cluster's span, with sparse outliers: realistic L1 problems.
-    const int k = static_cast<int>(random() % clusters);
-    Eigen::RowVectorXf w(terms);
-    for (int j = 0; j < terms; ++j) w[j] = normal(random);
-    const Eigen::Map<const RowMatrixF> f(problem.model.basis(k), terms, lights);
-    Eigen::RowVectorXf x = w * f;
-    for (int i = 0; i < lights; ++i) x[i] += 0.05f * normal(random);
-    for (int e = 0; e < 3; ++e) x[random() % lights] += 2.0f * normal(random);
-    problem.rows.values.row(r) = x / x.norm();
-  }
-  problem.candidates.width = width;
-  for (int r = 0; r < rows; ++r) {
-    const int count = 1 + static_cast<int>(random() % width);  // some lists end early
-    for (int slot = 0; slot < width; ++slot)
-      problem.candidates.clusters.push_back(slot < count ? static_cast<int>(random() % clusters) : -1);
-  }
-  return problem;
+AssignmentProblem random_problem(int rows, int clusters, int terms, int lights, int width,
+                                 std::uint64_t seed) {
+  return random_assignment_problem({rows, clusters, terms, lights, width, true, seed});
 }
 
-void expect_same_assignment(const RandomProblem& problem, OpenClAssigner& assigner) {
+void expect_same_assignment(const AssignmentProblem& problem, OpenClAssigner& assigner) {
   const IrlsSettings settings;
   const AssignmentResult cpu =
       assign_to_best_cluster(problem.rows, problem.model, problem.candidates, settings, 2);
@@ -78,11 +45,21 @@ TEST(OpenClAssignment, MatchesTheCpuReferenceOnRandomInputs) {
 
 TEST(OpenClAssignment, ReuploadsRowsThatChanged) {
   OpenClAssigner assigner("", IrlsSettings{});
-  RandomProblem problem = random_problem(800, 6, 4, 48, 3, 4);
+  AssignmentProblem problem = random_problem(800, 6, 4, 48, 3, 4);
   expect_same_assignment(problem, assigner);
   problem.rows.values.row(0) *= -1.0f;
   problem.rows.values.row(500).reverseInPlace();
   expect_same_assignment(problem, assigner);
+}
+
+TEST(OpenClAssignment, RunsOnAListedDevice) {
+  const std::vector<OpenClDevice> devices = list_opencl_devices();
+  ASSERT_FALSE(devices.empty());
+  const OpenClDevice& device = devices[default_opencl_device_index(devices)];
+  OpenClAssigner assigner(device, IrlsSettings{});
+  EXPECT_EQ(assigner.device_label(), device.label());
+  expect_same_assignment(random_problem(300, 4, 2, 20, 3, 5), assigner);
+  EXPECT_GT(assigner.kernel_seconds(), 0.0);
 }
 
 }  // namespace
