@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 
 #include "checkpoint.hpp"
 #include "clustered_factorization.hpp"
@@ -87,11 +89,11 @@ TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostRepor
   const auto result = testing::run_relume(
       "compress '" + (dir / "field").string() + "' -o '" + (dir / "half.relume").string() +
       "' --clusters 2 --terms 2 --residual 1 --weights-precision float16 "
-      "--residual-precision float16 --report '" + (dir / "report.json").string() + "'");
+      "--residual-precision float16 --report '" +
+      (dir / "report.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json report = read_json(dir / "report.json");
-  const double stored_error =
-      relative_error(field, read_container(dir / "half.relume"), true).mean;
+  const double stored_error = relative_error(field, read_container(dir / "half.relume"), true).mean;
   EXPECT_NEAR(report["error_masked"].get<double>(), stored_error, 1e-12);
   const nlohmann::json& cost = report["precision_cost"];
   EXPECT_EQ(cost["weights"], "float16");
@@ -125,8 +127,8 @@ TEST(CompressCommand, SeveralInputsGoToAFolderAndAFailureDoesNotStopTheOthers) {
 TEST(CompressCommand, RefusesBadArguments) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(4));
-  const std::string base = "compress '" + (dir / "field").string() + "' -o '" +
-                           (dir / "out.relume").string() + "' ";
+  const std::string base =
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() + "' ";
   for (const char* bad : {"--residual 5%%", "--residual -2", "--terms 0", "--transform dct",
                           "--solver simplex", "--assign fpga", "--terms 30"}) {
     const auto result = testing::run_relume(base + bad);
@@ -134,6 +136,44 @@ TEST(CompressCommand, RefusesBadArguments) {
     EXPECT_NE(result.output.find("error"), std::string::npos) << bad << ": " << result.output;
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "out.relume"));
+}
+
+// --target-error: the error reached is at most the target, the container is the smallest of the
+// (terms, clusters) pairs tried, and each function keeps a prefix of its sorted residual.
+TEST(CompressCommand, TargetErrorReachesTheTargetWithTheSmallestContainerTried) {
+  testing::TempDir dir;
+  ReflectanceField field = small_field(3);
+  std::mt19937_64 random(4);
+  std::normal_distribution<float> noise(0.0f, 0.05f);
+  for (std::int64_t i = 0; i < field.values.size(); ++i) field.values.data()[i] += noise(random);
+  write_field_folder(dir / "field", field);
+  const double target = 0.002;
+  const auto result = testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+                                          (dir / "t.relume").string() + "' --target-error " +
+                                          std::to_string(target) + " --report '" +
+                                          (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report = read_json(dir / "report.json");
+  const CompressedField compressed = read_container(dir / "t.relume");
+  const double reached = relative_error(field, compressed, true).mean;
+  EXPECT_LE(reached, target * (1 + 1e-6));
+  EXPECT_NEAR(report["error_masked"].get<double>(), reached, 1e-12);
+
+  const nlohmann::json& choice = report["target_error"];
+  ASSERT_FALSE(choice["tried"].empty());
+  std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+  for (const auto& tried : choice["tried"]) {
+    smallest = std::min(smallest, tried["bytes"].get<std::uint64_t>());
+    EXPECT_LE(tried["error_over_stored_rows"].get<double>(), target * (1 + 1e-6));
+  }
+  EXPECT_EQ(choice["chosen"]["bytes"].get<std::uint64_t>(), smallest);
+  EXPECT_EQ(choice["chosen"]["terms"].get<int>(), compressed.terms);
+  // Per-function residual lengths differ, and the error needs some residual at this target.
+  std::set<std::uint32_t> lengths;
+  for (std::size_t r = 0; r < compressed.stored_rows(); ++r)
+    lengths.insert(compressed.residual.row_offsets[r + 1] - compressed.residual.row_offsets[r]);
+  EXPECT_GT(lengths.size(), 1u);
+  EXPECT_GT(relative_error(field, compressed, true, 0).mean, target);
 }
 
 // The error that compress reports, recomputed from the decompressed images by
@@ -147,7 +187,8 @@ TEST(CompressCommand, ReportedErrorMatchesAnIndependentCheckOnRealData) {
   const std::string bear = (data / "olat/diligent-bear-crop8").string();
   auto result = testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
                                     "' --clusters 16 --terms 3 --residual 4 --iterations 2 "
-                                    "--report '" + (dir / "b.json").string() + "'");
+                                    "--report '" +
+                                    (dir / "b.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   result = testing::run_relume("decompress '" + (dir / "b.relume").string() + "' -o '" +
                                (dir / "decompressed").string() + "'");
@@ -166,9 +207,9 @@ TEST(CompressCommand, ReportedErrorMatchesAnIndependentCheckOnRealData) {
   EXPECT_GT(reported, 1e-4) << "a lossy setting, so the comparison means something";
   EXPECT_NEAR(independent, reported, 1e-4 * reported) << result.output;
   const auto& detail = report["error_masked_detail"];
-  const std::string functions = "functions inside the mask: " +
-                                std::to_string(detail["functions_averaged"].get<int>() +
-                                               detail["zero_energy_skipped"].get<int>());
+  const std::string functions =
+      "functions inside the mask: " + std::to_string(detail["functions_averaged"].get<int>() +
+                                                     detail["zero_energy_skipped"].get<int>());
   EXPECT_NE(result.output.find(functions), std::string::npos) << result.output;
 }
 
@@ -188,7 +229,8 @@ TEST(CompressCheckpoint, ResumingContinuesTheIterationsOfTheCheckpoint) {
   int calls = 0;
   const auto checkpoint = dir / "run.checkpoint";
   compress_field(field, options, stats, [&](const ClusterModel& model, const IterationRecord&) {
-    if (++calls == 2) write_checkpoint(checkpoint, "fingerprint", model, stats.clustering.iterations);
+    if (++calls == 2)
+      write_checkpoint(checkpoint, "fingerprint", model, stats.clustering.iterations);
   });
   ASSERT_EQ(stats.clustering.iterations.size(), 4u);  // the first assignment and 3 iterations
 
