@@ -128,6 +128,42 @@ TEST(OpenClRelighter, MatchesTheReferenceForEveryResidualCap) {
   }
 }
 
+// HDR maps reach 1.4e5 : 1 (Grace Cathedral) and stored rows span many decades of brightness:
+// float32 accumulation must stay accurate for the dim rows too, not only over the whole image.
+TEST(OpenClRelighter, ExtremeDynamicRangeStaysAccurateAtEveryBrightness) {
+  CompressedField field = random_compressed_field(small_shape(12));
+  constexpr int decades = 13;  // rows scaled by 1e-6 ... 1e6
+  auto exponent_of = [](std::size_t s) { return int(s % decades) - 6; };
+  for (std::size_t s = 0; s < field.stored_rows(); ++s) {
+    const float scale = std::pow(10.0f, float(exponent_of(s)));
+    field.weights.row(Eigen::Index(s)) *= scale;
+    for (std::uint32_t k = field.residual.row_offsets[s]; k < field.residual.row_offsets[s + 1];
+         ++k)
+      field.residual.values[k] *= scale;
+  }
+  LightRgb light = random_light_vector(field.lights, 13);
+  light.row(3) *= 1.4e5f;  // a sun among dim lights
+  light.row(17) *= 1e-4f;
+  OpenClRelighter relighter(pocl(), field);
+  for (const int cap : {0, full_residual}) {
+    const Image expected = relight_compressed_reference(field, light, cap);
+    const Image image = relighter.relight(light, cap);
+    std::vector<double> difference(decades, 0.0), energy(decades, 0.0);
+    for (std::size_t s = 0; s < field.stored_rows(); ++s) {
+      const std::uint32_t p = field.stored_function[s];
+      ASSERT_TRUE(std::isfinite(image.pixels[p])) << "row " << s;
+      const int decade = exponent_of(s) + 6;
+      difference[decade] += std::pow(double(image.pixels[p]) - expected.pixels[p], 2);
+      energy[decade] += std::pow(double(expected.pixels[p]), 2);
+    }
+    for (int decade = 0; decade < decades; ++decade) {
+      ASSERT_GT(energy[decade], 0);
+      EXPECT_LT(std::sqrt(difference[decade] / energy[decade]), float_tolerance)
+          << "rows scaled by 1e" << decade - 6 << ", cap " << cap;
+    }
+  }
+}
+
 TEST(OpenClRelighter, ClusterProductsMatchTheReference) {
   const CompressedField field = random_compressed_field(small_shape(11));
   OpenClRelighter relighter(pocl(), field);
