@@ -17,6 +17,7 @@
 #include "container.hpp"
 #include "environment_map.hpp"
 #include "error.hpp"
+#include "image_difference.hpp"
 #include "image_io.hpp"
 #include "light_vector.hpp"
 #include "progress.hpp"
@@ -97,16 +98,6 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
   return lights;
 }
 
-double relative_image_error(const Image& image, const Image& reference) {
-  double difference = 0, energy = 0;
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    const double d = double(image.pixels[i]) - reference.pixels[i];
-    difference += d * d;
-    energy += double(reference.pixels[i]) * reference.pixels[i];
-  }
-  return energy > 0 ? difference / energy : 0;
-}
-
 void run_sequence(const SequenceOptions& options) {
   check_pattern(options.output_pattern);
   if (options.batch < 1) throw Error("--batch must be at least 1");
@@ -134,7 +125,7 @@ void run_sequence(const SequenceOptions& options) {
       const int frame = static_cast<int>(first + b);
       write_image(frame_path(options.output_pattern, frame), images[b], {options.exposure});
       nlohmann::json record = {{"frame", frame}, {"file", frame_path(options.output_pattern, frame)}};
-      if (options.compare) record["error"] = relative_image_error(images[b], references[b]);
+      if (options.compare) record["error"] = image_difference(images[b], references[b]).relative_squared_error;
       frames.push_back(record);
       progress.advance();
     }

@@ -4,7 +4,8 @@
 # turn. Everything goes to out/demo/ (overwritten on each run):
 #   scene/            the OLAT set (253 EXR images + light files)
 #   scene.relume      the compressed field, report.json its compression report
-#   reference.png     the uncompressed field relit (ground truth), relit.png the compressed one
+#   reference.exr/png the uncompressed field relit (ground truth), relit.exr/png the compressed one,
+#   relit_error.json  how far relit.exr is from reference.exr (relume compare)
 #   frames/NNNN.png   36 frames of the rotating sequence, sequence.json their timings and errors
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,8 +20,13 @@ $relume sky -o "$out/sky.exr"
 $relume compress "$out/scene" -o "$out/scene.relume" --clusters 64 --terms 4 --residual 12 \
   --report "$out/report.json"
 $relume info "$out/scene.relume"
-$relume relight "$out/scene" --env "$out/sky.exr" -o "$out/reference.png" --exposure -1
-$relume relight "$out/scene.relume" --env "$out/sky.exr" -o "$out/relit.png" --exposure -1
+for image in reference.exr reference.png; do
+  $relume relight "$out/scene" --env "$out/sky.exr" -o "$out/$image" --exposure -1
+done
+for image in relit.exr relit.png; do
+  $relume relight "$out/scene.relume" --env "$out/sky.exr" -o "$out/$image" --exposure -1
+done
+$relume compare "$out/relit.exr" "$out/reference.exr" --json "$out/relit_error.json"
 $relume relight-sequence "$out/scene.relume" --env "$out/sky.exr" --frames 36 --rotate-step 10 \
   --exposure -1 --compare -o "$out/frames/%04d.png" --report "$out/sequence.json"
 echo "demo: images in $out (reference.png, relit.png, frames/)"

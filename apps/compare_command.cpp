@@ -1,0 +1,57 @@
+// `relume compare IMAGE REFERENCE`: how far a relit image is from a reference (for example a
+// compressed field relit against the uncompressed one): relative squared error, relative L2
+// error, the largest absolute difference and where it is, and the count of negative values.
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.hpp"
+#include "command_registry.hpp"
+#include "image_difference.hpp"
+#include "image_io.hpp"
+
+namespace relume {
+namespace {
+
+struct CompareOptions {
+  std::string image, reference, json;
+};
+
+void run_compare(const CompareOptions& options) {
+  const ImageDifference d = image_difference(
+      read_image(options.image), read_image(options.reference), options.image, options.reference);
+  std::printf(
+      "%s against %s: relative squared error %.6g (relative L2 %.6g), largest |difference| "
+      "%.6g at pixel (%d, %d) channel %d, %zu of %zu values negative\n",
+      options.image.c_str(), options.reference.c_str(), d.relative_squared_error,
+      std::sqrt(d.relative_squared_error), d.max_abs_difference, d.max_x, d.max_y, d.max_channel,
+      d.negative_values, d.values);
+  if (options.json.empty()) return;
+  const nlohmann::ordered_json report = {
+      {"image", options.image},
+      {"reference", options.reference},
+      {"relative_squared_error", d.relative_squared_error},
+      {"relative_l2_error", std::sqrt(d.relative_squared_error)},
+      {"max_abs_difference", d.max_abs_difference},
+      {"max_at", {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}}},
+      {"negative_values", d.negative_values},
+      {"values", d.values}};
+  write_file_atomically(options.json, report.dump(2) + "\n");
+}
+
+const CommandRegistration registration{
+    38, [](CLI::App& app) {
+      auto options = std::make_shared<CompareOptions>();
+      auto* command = app.add_subcommand(
+          "compare",
+          "Compare an image with a reference of the same size (any format OpenImageIO reads; use "
+          "linear EXRs for relit images): relative squared error sum (a - r)^2 / sum r^2, relative "
+          "L2 error, largest absolute difference, negative values");
+      command->add_option("image", options->image, "The image to judge")->required();
+      command->add_option("reference", options->reference, "The reference image")->required();
+      command->add_option("--json", options->json, "Also write the figures to this JSON file");
+      command->callback([options] { run_compare(*options); });
+    }};
+
+}  // namespace
+}  // namespace relume
