@@ -14,6 +14,7 @@
 
 #include "atomic_file.hpp"
 #include "command_registry.hpp"
+#include "elapsed_time.hpp"
 #include "error.hpp"
 #include "l1_factorization.hpp"
 #include "l1_planted_matrix.hpp"
@@ -62,10 +63,6 @@ struct RegressionRecord {
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 bool is_exact(const std::string& solver) { return solver == "lp" || solver == "lp-dual"; }

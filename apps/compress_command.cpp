@@ -17,6 +17,7 @@
 #include "compression_report.hpp"
 #include "compression_target.hpp"
 #include "container.hpp"
+#include "elapsed_time.hpp"
 #include "error.hpp"
 #include "field_io.hpp"
 #include "opencl_assignment.hpp"
@@ -28,7 +29,6 @@ namespace relume {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 struct CompressArguments {
   std::vector<std::string> inputs;
@@ -47,10 +47,6 @@ struct CompressArguments {
   bool quiet = false;
   CompressionOptions options;
 };
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The settings that shape the clustering, with the input: a checkpoint is only resumed when its
 // fingerprint is the same.

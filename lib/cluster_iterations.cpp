@@ -6,17 +6,12 @@
 
 #include "cluster_basis.hpp"
 #include "cluster_seeding.hpp"
+#include "elapsed_time.hpp"
 #include "parallel.hpp"
 #include "progress.hpp"
 
 namespace relume {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 AssignmentResult run_assignment(const WorkingRows& rows, const ClusterModel& model,
                                 const CandidateLists& candidates, const ClusteringOptions& options,

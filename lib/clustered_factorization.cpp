@@ -6,18 +6,13 @@
 #include <chrono>
 #include <cmath>
 
+#include "elapsed_time.hpp"
 #include "error.hpp"
 #include "haar_transform.hpp"
 #include "parallel.hpp"
 
 namespace relume {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 void validate_options(const ReflectanceField& field, const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;

@@ -5,17 +5,12 @@
 #include <chrono>
 
 #include "downsample.hpp"
+#include "elapsed_time.hpp"
 #include "error.hpp"
 #include "progress.hpp"
 
 namespace relume {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // For every full-resolution row, the distinct clusters of the low-resolution functions in the
 // 3x3 pixel neighbourhood of its position (empty when none is stored there).
