@@ -1,36 +1,12 @@
 // Implementation of the residual points of `relume bench --container`.
 #include "bench_container_sweep.hpp"
 
-#include <algorithm>
-
 #include "error.hpp"
 #include "field_io.hpp"
 #include "reconstruct_field.hpp"
 #include "residual_selection.hpp"
 
 namespace relume {
-namespace {
-
-// `field` with each residual row cut to its first `cap` entries (its largest ones).
-CompressedField with_residual_cap(const CompressedField& field, int cap) {
-  CompressedField capped = field;
-  const ResidualRows& full = field.residual;
-  ResidualRows& rows = capped.residual;
-  rows.light_index.clear();
-  rows.values.clear();
-  for (std::size_t s = 0; s < full.rows(); ++s) {
-    const std::uint32_t begin = full.row_offsets[s];
-    const std::uint32_t end = std::min<std::uint32_t>(full.row_offsets[s + 1], begin + cap);
-    rows.row_offsets[s] = std::uint32_t(rows.values.size());
-    rows.light_index.insert(rows.light_index.end(), full.light_index.begin() + begin,
-                            full.light_index.begin() + end);
-    rows.values.insert(rows.values.end(), full.values.begin() + begin, full.values.begin() + end);
-  }
-  rows.row_offsets[full.rows()] = std::uint32_t(rows.values.size());
-  return capped;
-}
-
-}  // namespace
 
 std::vector<ResidualPoint> container_sweep_points(const CompressedField& container,
                                                   const std::filesystem::path& container_path,
@@ -44,9 +20,9 @@ std::vector<ResidualPoint> container_sweep_points(const CompressedField& contain
   if (original_field.empty()) {
     for (ResidualPoint& point : points)
       point.error =
-          point.cap == full_residual
-              ? relative_error(container, container, threads).mean
-              : relative_error(container, with_residual_cap(container, point.cap), threads).mean;
+          relative_error(container, container,
+                         point.cap == full_residual ? all_residual_entries : point.cap, threads)
+              .mean;
     return points;
   }
   FieldLoadOptions load;

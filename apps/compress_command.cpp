@@ -117,14 +117,18 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   write_container(output, compressed, container);
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
-  // The report measures what the file holds: half precision rounds W and the residual values.
-  const CompressedField stored = read_container(output);
+  // The report measures what the file holds: half precision rounds W and the residual values
+  // (quantize_for_container is what read_container would return); float32 stores them exactly.
+  const bool rounded =
+      container.weights != ValuePrecision::float32 || container.residual != ValuePrecision::float32;
+  const CompressedField stored =
+      rounded ? quantize_for_container(compressed, container) : CompressedField{};
 
   CompressionRun run;
   run.input = input;
   run.output = output.string();
   run.field = &field;
-  run.compressed = &stored;
+  run.compressed = rounded ? &stored : &compressed;
   run.options = &options;
   run.stats = &stats;
   run.layout = describe_container(output);
@@ -135,7 +139,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
   if (!target_choice.is_null()) report["target_error"] = target_choice;
-  if (container.weights != ValuePrecision::float32 || container.residual != ValuePrecision::float32)
+  if (rounded)
     report["precision_cost"] = {
         {"weights", to_string(container.weights)},
         {"residual_values", to_string(container.residual)},

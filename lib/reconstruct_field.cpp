@@ -168,7 +168,8 @@ RelativeError relative_error(const ReflectanceField& original, const CompressedF
 }
 
 RelativeError relative_error(const CompressedField& reference, const CompressedField& approximation,
-                             unsigned threads) {
+                             int approximation_cap, unsigned threads) {
+  check_residual_cap(approximation_cap);
   validate_compressed_field(reference, "cannot measure the error: the reference field");
   validate_compressed_field(approximation, "cannot measure the error: the approximation");
   if (reference.width != approximation.width || reference.height != approximation.height ||
@@ -186,7 +187,7 @@ RelativeError relative_error(const CompressedField& reference, const CompressedF
         reconstruct_function(reference, std::int64_t(r), all_residual_entries, rows.sum.data(),
                              rows.exact.data());
         reconstruct_function(approximation, approximation_row[reference.stored_function[r]],
-                             all_residual_entries, rows.sum.data(), rows.approx.data());
+                             approximation_cap, rows.sum.data(), rows.approx.data());
         return true;
       });
 }

@@ -45,10 +45,11 @@ RelativeError relative_error(const ReflectanceField& original, const CompressedF
                              bool masked_only, int residual_cap = all_residual_entries,
                              unsigned threads = 0);
 
-// Eq. 16 of `approximation` against `reference`, two compressions of the same field, over the
-// functions `reference` stores (each with its full residual; functions `approximation` does not
-// store count as zero), compared in the light basis.
+// Eq. 16 of `approximation` against `reference`, two compressions of the same field (or one with
+// itself at a shorter residual), over the functions `reference` stores (each with its full
+// residual; functions `approximation` does not store count as zero), compared in the light basis.
+// `approximation_cap`: residual entries per row of `approximation` (all_residual_entries: all).
 RelativeError relative_error(const CompressedField& reference, const CompressedField& approximation,
-                             unsigned threads = 0);
+                             int approximation_cap = all_residual_entries, unsigned threads = 0);
 
 }  // namespace relume
