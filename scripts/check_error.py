@@ -78,4 +78,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except (OSError, ValueError) as error:  # a missing listing, a malformed intensities file
+        sys.exit(f"check_error: {error}")
