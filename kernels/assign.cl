@@ -8,6 +8,11 @@
 //   bases:      clusters x TERMS x LIGHTS (F^k row j at (k * TERMS + j) * LIGHTS)
 //   candidates: row_count x WIDTH cluster ids, -1 ends a row's list
 //   outputs:    best, second (-1 if none), objective, weights (row_count x TERMS)
+//
+// Each IRLS step is one pass over the lights in vectors of LIGHT_VECTOR (4, 8 or 16;
+// the host picks the CPU's native float width, 4 on GPUs): it scores the
+// current weights (residual e, its L1 sum) and, from the same e, sums the next solve's normal
+// equations. No per-light array is kept, and the lights are read as vectors from contiguous rows.
 // The small normal equations are solved in REAL (double where the device has fp64).
 
 #ifndef TERMS
@@ -28,6 +33,9 @@
 #ifndef USE_DOUBLE
 #define USE_DOUBLE 0
 #endif
+#ifndef LIGHT_VECTOR
+#define LIGHT_VECTOR 8
+#endif
 
 #if USE_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
@@ -35,6 +43,87 @@ typedef double REAL;
 #else
 typedef float REAL;
 #endif
+
+#if LIGHT_VECTOR == 4
+typedef float4 lights_t;
+#define load_lights(offset, pointer) vload4(offset, pointer)
+inline float lane_sum(const float4 four) { return four.x + four.y + four.z + four.w; }
+#elif LIGHT_VECTOR == 8
+typedef float8 lights_t;
+#define load_lights(offset, pointer) vload8(offset, pointer)
+inline float lane_sum(const float8 v) {
+  const float4 four = v.lo + v.hi;
+  return four.x + four.y + four.z + four.w;
+}
+#elif LIGHT_VECTOR == 16
+typedef float16 lights_t;
+#define load_lights(offset, pointer) vload16(offset, pointer)
+inline float lane_sum(const float16 v) {
+  const float8 eight = v.lo + v.hi;
+  const float4 four = eight.lo + eight.hi;
+  return four.x + four.y + four.z + four.w;
+}
+#else
+#error "LIGHT_VECTOR must be 4, 8 or 16"
+#endif
+
+#define FULL_VECTORS (LIGHTS / LIGHT_VECTOR)
+#define TAIL_LIGHTS (LIGHTS % LIGHT_VECTOR)
+#define PAIRS (TERMS * (TERMS + 1) / 2)  // lower triangle of the normal matrix
+
+// The last, partial vector of lights, zero beyond LIGHTS: a zero light adds nothing to the L1
+// sum (e = 0) nor to the normal equations (d * 0 * 0).
+inline lights_t load_tail(__global const float* pointer) {
+  float lanes[LIGHT_VECTOR];
+  for (int i = 0; i < LIGHT_VECTOR; ++i)
+    lanes[i] = i < TAIL_LIGHTS ? pointer[FULL_VECTORS * LIGHT_VECTOR + i] : 0.0f;
+  return load_lights(0, lanes);
+}
+
+// One vector of lights of a pass (see fit_pass): adds |e| to l1 and d f_j f_l, d f_j x to the
+// normal equations.
+inline void pass_step(const lights_t* f, const lights_t x, const float* w, const int start,
+                      lights_t* l1, lights_t* g, lights_t* b) {
+  lights_t d = (lights_t)(1.0f);
+  if (!start) {
+    lights_t e = x;
+    for (int j = 0; j < TERMS; ++j) e -= w[j] * f[j];
+    const lights_t magnitude = fabs(e);
+    *l1 += magnitude;
+    d = 1.0f / fmax(magnitude, EPSILON);
+  }
+  int pair = 0;
+  for (int j = 0; j < TERMS; ++j) {
+    const lights_t weighted = d * f[j];
+    b[j] += weighted * x;
+    for (int l = 0; l <= j; ++l) g[pair++] += weighted * f[l];
+  }
+}
+
+// One IRLS step over all lights. With `start`, sums the least-squares normal equations (d = 1)
+// and returns 0; otherwise returns the L1 residual of the weights w and sums the normal
+// equations with d_i = 1 / max(|e_i|, EPSILON). gram: TERMS x TERMS, full; rhs: TERMS.
+float fit_pass(__global const float* f, __global const float* x, const float* w, const int start,
+               REAL* gram, REAL* rhs) {
+  lights_t l1 = (lights_t)(0.0f), g[PAIRS], b[TERMS];
+  for (int i = 0; i < PAIRS; ++i) g[i] = (lights_t)(0.0f);
+  for (int j = 0; j < TERMS; ++j) b[j] = (lights_t)(0.0f);
+  lights_t fv[TERMS];
+  for (int v = 0; v < FULL_VECTORS; ++v) {
+    for (int j = 0; j < TERMS; ++j) fv[j] = load_lights(v, f + j * LIGHTS);
+    pass_step(fv, load_lights(v, x), w, start, &l1, g, b);
+  }
+#if TAIL_LIGHTS > 0
+  for (int j = 0; j < TERMS; ++j) fv[j] = load_tail(f + j * LIGHTS);
+  pass_step(fv, load_tail(x), w, start, &l1, g, b);
+#endif
+  int pair = 0;
+  for (int j = 0; j < TERMS; ++j) {
+    rhs[j] = lane_sum(b[j]);
+    for (int l = 0; l <= j; ++l, ++pair) gram[j * TERMS + l] = gram[l * TERMS + j] = lane_sum(g[pair]);
+  }
+  return lane_sum(l1);
+}
 
 // Solves G x = b (TERMS x TERMS, symmetric positive semi-definite) by Cholesky with a small ridge;
 // directions without support get x = 0. G and b are overwritten; x is left in b.
@@ -71,38 +160,23 @@ void solve_small_spd(REAL* g, REAL* b) {
   }
 }
 
-// w = argmin sum_i d_i (x_i - w . F_i)^2, with d_i = 1 when `unit` (the least-squares start).
-void solve_weighted(__global const float* f, __global const float* x, const float* d, int unit,
-                    float* w) {
-  REAL g[TERMS * TERMS], b[TERMS];
-  for (int j = 0; j < TERMS; ++j) {
-    for (int l = 0; l <= j; ++l) {
-      float sum = 0.0f;
-      for (int i = 0; i < LIGHTS; ++i) {
-        const float weighted = unit ? f[j * LIGHTS + i] : d[i] * f[j * LIGHTS + i];
-        sum += weighted * f[l * LIGHTS + i];
-      }
-      g[j * TERMS + l] = g[l * TERMS + j] = sum;
+// The IRLS fit of row x against basis f: the lowest L1 residual seen, its weights in `fitted`.
+float fit_row(__global const float* f, __global const float* x, float* fitted) {
+  REAL gram[TERMS * TERMS], rhs[TERMS];
+  float current[TERMS];
+  fit_pass(f, x, current, 1, gram, rhs);
+  float best = INFINITY;
+  for (int step = 0; step <= ITERATIONS; ++step) {
+    solve_small_spd(gram, rhs);
+    for (int j = 0; j < TERMS; ++j) current[j] = (float)rhs[j];
+    // Scores `current` and, unless it is the last solve, sets up the next one.
+    const float objective = fit_pass(f, x, current, 0, gram, rhs);
+    if (objective < best) {
+      best = objective;
+      for (int j = 0; j < TERMS; ++j) fitted[j] = current[j];
     }
-    float sum = 0.0f;
-    for (int i = 0; i < LIGHTS; ++i) {
-      const float weighted = unit ? f[j * LIGHTS + i] : d[i] * f[j * LIGHTS + i];
-      sum += weighted * x[i];
-    }
-    b[j] = sum;
   }
-  solve_small_spd(g, b);
-  for (int j = 0; j < TERMS; ++j) w[j] = (float)b[j];
-}
-
-// e = x - w F; returns sum |e|.
-float residual_l1(__global const float* f, __global const float* x, const float* w, float* e) {
-  for (int i = 0; i < LIGHTS; ++i) e[i] = x[i];
-  for (int j = 0; j < TERMS; ++j)
-    for (int i = 0; i < LIGHTS; ++i) e[i] -= w[j] * f[j * LIGHTS + i];
-  float sum = 0.0f;
-  for (int i = 0; i < LIGHTS; ++i) sum += fabs(e[i]);
-  return sum;
+  return best;
 }
 
 __kernel void assign_rows(__global const float* rows, __global const float* bases,
@@ -112,7 +186,6 @@ __kernel void assign_rows(__global const float* rows, __global const float* base
   const uint r = get_global_id(0);
   if (r >= row_count) return;
   __global const float* x = rows + (size_t)r * LIGHTS;
-  float e[LIGHTS];
   float best = INFINITY, second = INFINITY;
   int best_k = -1, second_k = -1;
   float best_w[TERMS];
@@ -120,20 +193,8 @@ __kernel void assign_rows(__global const float* rows, __global const float* base
   for (int slot = 0; slot < WIDTH; ++slot) {
     const int k = candidates[(size_t)r * WIDTH + slot];
     if (k < 0) break;
-    __global const float* f = bases + (size_t)k * TERMS * LIGHTS;
-    float current[TERMS], fitted[TERMS];
-    solve_weighted(f, x, e, 1, current);
-    float objective = residual_l1(f, x, current, e);
-    for (int j = 0; j < TERMS; ++j) fitted[j] = current[j];
-    for (int iteration = 0; iteration < ITERATIONS; ++iteration) {
-      for (int i = 0; i < LIGHTS; ++i) e[i] = 1.0f / fmax(fabs(e[i]), EPSILON);
-      solve_weighted(f, x, e, 0, current);
-      const float value = residual_l1(f, x, current, e);
-      if (value < objective) {
-        objective = value;
-        for (int j = 0; j < TERMS; ++j) fitted[j] = current[j];
-      }
-    }
+    float fitted[TERMS];
+    const float objective = fit_row(bases + (size_t)k * TERMS * LIGHTS, x, fitted);
     if (objective < best) {
       second = best;
       second_k = best_k;

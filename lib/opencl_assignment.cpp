@@ -2,17 +2,38 @@
 #include "opencl_assignment.hpp"
 
 #include <cstdio>
+#include <string>
 #include <utility>
 
 #include "error.hpp"
 
 namespace relume {
 
-OpenClAssigner::OpenClAssigner(const std::string& device_selector, const IrlsSettings& settings)
-    : OpenClAssigner(select_opencl_device(device_selector), settings) {}
+namespace {
 
-OpenClAssigner::OpenClAssigner(OpenClDevice device, const IrlsSettings& settings)
-    : context_(std::make_unique<OpenClContext>(std::move(device))), settings_(settings) {}
+// CPUs run the passes as SIMD vectors of their native float width (PoCL: 8 with AVX2, 16 with
+// AVX-512); a GPU work-item keeps its vectors in registers, so short ones suit it.
+int default_light_vector(const OpenClDevice& device) {
+  if (device.type != "cpu") return 4;
+  const cl_uint native = device.device.getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
+  return native >= 16 ? 16 : 8;
+}
+
+}  // namespace
+
+OpenClAssigner::OpenClAssigner(const std::string& device_selector, const IrlsSettings& settings,
+                               int light_vector)
+    : OpenClAssigner(select_opencl_device(device_selector), settings, light_vector) {}
+
+OpenClAssigner::OpenClAssigner(OpenClDevice device, const IrlsSettings& settings,
+                               int light_vector)
+    : settings_(settings),
+      light_vector_(light_vector ? light_vector : default_light_vector(device)) {
+  if (light_vector_ != 4 && light_vector_ != 8 && light_vector_ != 16)
+    throw Error("OpenCL assignment: lights per vector must be 4, 8 or 16, got " +
+                std::to_string(light_vector_));
+  context_ = std::make_unique<OpenClContext>(std::move(device));
+}
 
 OpenClAssigner::~OpenClAssigner() = default;
 
@@ -37,9 +58,10 @@ AssignmentResult OpenClAssigner::assign(const WorkingRows& rows, const ClusterMo
       std::string::npos;
   char options[256];
   std::snprintf(options, sizeof options,
-                "-DTERMS=%d -DLIGHTS=%d -DWIDTH=%d -DITERATIONS=%d -DEPSILON=%.9gf -DUSE_DOUBLE=%d",
+                "-DTERMS=%d -DLIGHTS=%d -DWIDTH=%d -DITERATIONS=%d -DEPSILON=%.9gf -DUSE_DOUBLE=%d "
+                "-DLIGHT_VECTOR=%d",
                 model.terms, model.lights, candidates.width, settings_.iterations,
-                double(settings_.epsilon), fp64 ? 1 : 0);
+                double(settings_.epsilon), fp64 ? 1 : 0, light_vector_);
   try {
     const cl::Context& context = context_->context();
     cl::CommandQueue& queue = context_->queue();

@@ -16,9 +16,12 @@ namespace relume {
 class OpenClAssigner {
  public:
   // device_selector: see select_opencl_device ("" = RELUME_DEVICE, else the default device).
-  OpenClAssigner(const std::string& device_selector, const IrlsSettings& settings);
+  // light_vector: lights per vector of the kernel's passes, 4, 8 or 16; 0 picks the device's
+  // (the native float width on CPUs, clamped to 8..16; 4 on other devices).
+  OpenClAssigner(const std::string& device_selector, const IrlsSettings& settings,
+                 int light_vector = 0);
   // device: one of list_opencl_devices(), for example to run on each device in turn.
-  OpenClAssigner(OpenClDevice device, const IrlsSettings& settings);
+  OpenClAssigner(OpenClDevice device, const IrlsSettings& settings, int light_vector = 0);
   ~OpenClAssigner();
 
   AssignmentResult assign(const WorkingRows& rows, const ClusterModel& model,
@@ -26,11 +29,13 @@ class OpenClAssigner {
   // assign() as a ClusteringOptions::assign callback (this object must outlive its use).
   AssignFunction function();
   std::string device_label() const;
+  int light_vector() const { return light_vector_; }
   double kernel_seconds() const { return kernel_seconds_; }  // summed over all calls
 
  private:
   std::unique_ptr<OpenClContext> context_;
   IrlsSettings settings_;
+  int light_vector_;
   // The rows last uploaded, identified by their address, size and a sample of their values.
   const float* uploaded_rows_ = nullptr;
   std::size_t uploaded_count_ = 0;

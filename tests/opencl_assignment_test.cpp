@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cluster_assignment.hpp"
+#include "error.hpp"
 #include "opencl_assignment.hpp"
 #include "random_assignment_problem.hpp"
 
@@ -41,6 +42,20 @@ TEST(OpenClAssignment, MatchesTheCpuReferenceOnRandomInputs) {
   expect_same_assignment(random_problem(3000, 12, 4, 96, 4, 1), assigner);
   expect_same_assignment(random_problem(1000, 5, 3, 37, 6, 2), assigner);
   expect_same_assignment(random_problem(500, 3, 1, 16, 2, 3), assigner);
+}
+
+// Every vector width of the kernel's passes, with lights that fill whole vectors and lights that
+// leave a partial one.
+TEST(OpenClAssignment, EveryLightVectorWidthMatchesTheCpuReference) {
+  for (const int light_vector : {4, 8, 16}) {
+    SCOPED_TRACE("light vector " + std::to_string(light_vector));
+    OpenClAssigner assigner("", IrlsSettings{}, light_vector);
+    EXPECT_EQ(assigner.light_vector(), light_vector);
+    expect_same_assignment(random_problem(600, 6, 4, 64, 3, 6), assigner);
+    expect_same_assignment(random_problem(600, 6, 2, 45, 3, 7), assigner);
+    expect_same_assignment(random_problem(300, 4, 3, 5, 2, 8), assigner);
+  }
+  EXPECT_THROW(OpenClAssigner("", IrlsSettings{}, 2), Error);
 }
 
 TEST(OpenClAssignment, ReuploadsRowsThatChanged) {
