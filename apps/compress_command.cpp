@@ -37,7 +37,7 @@ struct CompressArguments {
   std::string residual = "5%";
   std::string solver = "irls";
   std::string transform = "identity";
-  std::string assign = "cpu";
+  std::string assign = "opencl";
   std::string device;
   std::string weights_precision = "float32";
   std::string residual_precision = "float32";
@@ -62,6 +62,17 @@ std::string fingerprint(const std::string& input, const CompressionOptions& opti
                         {"max", clustering.sizes.maximum},
                         {"seed", clustering.seed}}
       .dump();
+}
+
+// The OpenCL assignment on --device, with PoCL's threads capped by --threads like the CPU work.
+std::unique_ptr<OpenClAssigner> make_assigner(const std::string& device,
+                                              const ClusteringOptions& clustering) {
+  if (clustering.threads > 0) limit_cpu_driver_threads(clustering.threads);
+  try {
+    return std::make_unique<OpenClAssigner>(device, clustering.weight_fit);
+  } catch (const Error& error) {
+    throw Error(std::string(error.what()) + " (--assign cpu runs the assignment without OpenCL)");
+  }
 }
 
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
@@ -183,7 +194,7 @@ void run_compress(CompressArguments& arguments) {
 
   std::unique_ptr<OpenClAssigner> opencl;
   if (arguments.assign == "opencl")
-    opencl = std::make_unique<OpenClAssigner>(arguments.device, options.clustering.weight_fit);
+    opencl = make_assigner(arguments.device, options.clustering);
   else if (arguments.assign != "cpu")
     throw Error("--assign must be 'cpu' or 'opencl', got '" + arguments.assign + "'");
 
@@ -265,9 +276,12 @@ const CommandRegistration registration{20, [](CLI::App& app) {
                       "Clusters with more functions split into two halves (default 0: no limit)");
   command->add_option("--seed", clustering.seed, "Random seed of the cluster seeding")
       ->capture_default_str();
-  command->add_option("--threads", clustering.threads, "Worker threads (default 0: all cores)");
+  command->add_option("--threads", clustering.threads,
+                      "Worker threads, also of PoCL for --assign opencl unless POCL_MAX_PTHREAD_COUNT "
+                      "is set (default 0: all cores)");
   command->add_option("--assign", arguments->assign,
-                      "Where the reassignment fits run: cpu (default) or opencl (--device)");
+                      "Where the reassignment fits run: opencl (default: kernels/assign.cl on --device) or "
+                      "cpu (the C++ reference path)");
   command->add_option("--device", arguments->device,
                       "OpenCL device for --assign opencl: a substring of 'platform / device' "
                       "(default RELUME_DEVICE, else the first GPU, else PoCL)");

@@ -51,6 +51,10 @@ std::string device_listing(const std::vector<OpenClDevice>& devices) {
 
 std::string OpenClDevice::label() const { return platform_name + " / " + device_name; }
 
+void limit_cpu_driver_threads(unsigned threads) {
+  setenv("POCL_MAX_PTHREAD_COUNT", std::to_string(threads).c_str(), /*overwrite=*/0);
+}
+
 std::vector<OpenClDevice> list_opencl_devices() {
   std::vector<cl::Platform> platforms;
   try {

@@ -32,6 +32,10 @@ struct OpenClDevice {
   std::string label() const;
 };
 
+// Asks PoCL's CPU driver to run kernels on at most `threads` threads (POCL_MAX_PTHREAD_COUNT),
+// unless that variable is set already. Takes effect only before the process's first OpenCL call.
+void limit_cpu_driver_threads(unsigned threads);
+
 // Every device of every platform, in platform then device order. Empty when no OpenCL platform
 // is installed.
 std::vector<OpenClDevice> list_opencl_devices();

@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
@@ -14,6 +15,7 @@
 #include "container.hpp"
 #include "error.hpp"
 #include "field_io.hpp"
+#include "opencl_runtime.hpp"
 #include "reconstruct_field.hpp"
 #include "test_support.hpp"
 
@@ -211,6 +213,31 @@ TEST(CompressCommand, ReportedErrorMatchesAnIndependentCheckOnRealData) {
       "functions inside the mask: " + std::to_string(detail["functions_averaged"].get<int>() +
                                                      detail["zero_energy_skipped"].get<int>());
   EXPECT_NE(result.output.find(functions), std::string::npos) << result.output;
+}
+
+// The assignment runs as the OpenCL kernel unless --assign cpu asks for the C++ path; both make
+// the same choices on real data, so the containers' errors agree closely.
+TEST(CompressCommand, OpenClAssignmentIsTheDefaultAndAgreesWithTheCpuPath) {
+  RELUME_REQUIRE_SHARED_DATA(data);
+  testing::TempDir dir;
+  const std::string bear = (data / "olat/diligent-bear-crop8").string();
+  std::map<std::string, nlohmann::json> reports;
+  for (const std::string assign : {"", "--assign cpu"}) {
+    const auto result = testing::run_relume(
+        "compress '" + bear + "' -o '" + (dir / "b.relume").string() +
+        "' --clusters 16 --terms 3 --residual 4 --iterations 2 --threads 2 " + assign +
+        " --report '" + (dir / "b.json").string() + "'");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    reports[assign] = read_json(dir / "b.json");
+  }
+  const std::string device = reports[""]["assignment_device"].get<std::string>();
+  EXPECT_NE(device, "cpu");
+  EXPECT_EQ(device, select_opencl_device().label());
+  EXPECT_EQ(reports["--assign cpu"]["assignment_device"], "cpu");
+  const double opencl = reports[""]["error_masked"].get<double>();
+  const double cpu = reports["--assign cpu"]["error_masked"].get<double>();
+  EXPECT_GT(cpu, 1e-4) << "a lossy setting, so the comparison means something";
+  EXPECT_NEAR(opencl, cpu, 0.01 * cpu);
 }
 
 TEST(CompressCheckpoint, ResumingContinuesTheIterationsOfTheCheckpoint) {
