@@ -70,7 +70,10 @@ AssignmentResult OpenClAssigner::assign(const WorkingRows& rows, const ClusterMo
     for (std::size_t i = 0; i < std::size_t(rows.values.size()); i += 997) sample += rows.values.data()[i];
     if (!rows_buffer_ || uploaded_rows_ != rows.values.data() || uploaded_count_ != count ||
         uploaded_sample_ != sample) {
-      rows_buffer_ = cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, row_bytes,
+      // A CPU device reads the rows where they are: no second copy of the largest array.
+      const cl_mem_flags where =
+          context_->device().type == "cpu" ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR;
+      rows_buffer_ = cl::Buffer(context, CL_MEM_READ_ONLY | where, row_bytes,
                                 const_cast<float*>(rows.values.data()));
       uploaded_rows_ = rows.values.data();
       uploaded_count_ = count;

@@ -46,7 +46,7 @@ run harvest "$harvest" --clusters 64 --terms 4 --residual 10
 run harvest-8-iterations "$harvest" --clusters 64 --terms 4 --residual 10 --iterations 8 --irls-iterations 10 --candidates 4
 run harvest-haar "$harvest" --clusters 64 --terms 4 --residual 10 --transform haar
 run harvest-multires "$harvest" --clusters 64 --terms 4 --residual 10 --multires 1
-run harvest-opencl "$harvest" --clusters 64 --terms 4 --residual 10 --assign opencl
+run harvest-cpu-assign "$harvest" --clusters 64 --terms 4 --residual 10 --assign cpu
 run ball-lp-dual "$ball" --clusters 64 --terms 4 --residual 5% --solver lp-dual
 run ball-target "$ball" --target-error 0.0005
 
