@@ -36,6 +36,17 @@ bool is_numbered(const fs::path& path) {
   return !stem.empty() && std::all_of(stem.begin(), stem.end(), ::isdigit);
 }
 
+// Orders numbered images by their number (2.png before 10.png), equal numbers by name.
+bool numbered_before(const fs::path& a, const fs::path& b) {
+  const auto number = [](const fs::path& path) {
+    const std::string stem = path.stem().string();
+    return stem.substr(std::min(stem.find_first_not_of('0'), stem.size()));
+  };
+  const std::string x = number(a), y = number(b);
+  if (x.size() != y.size()) return x.size() < y.size();
+  return x != y ? x < y : a < b;
+}
+
 std::vector<fs::path> read_filenames(const fs::path& folder) {
   const fs::path list = folder / "filenames.txt";
   std::vector<fs::path> images;
@@ -51,7 +62,8 @@ std::vector<fs::path> read_filenames(const fs::path& folder) {
   for (const auto& entry : fs::directory_iterator(folder))
     if (entry.is_regular_file() && is_image_file(entry.path()) && is_numbered(entry.path()))
       images.push_back(entry.path());
-  std::sort(images.begin(), images.end());
+  // By number: row i of light_directions.txt belongs to the i-th image.
+  std::sort(images.begin(), images.end(), numbered_before);
   if (images.empty())
     throw Error("folder " + folder.string() +
                 " has no filenames.txt and no numbered images (001.png, ...)");

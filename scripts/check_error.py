@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Independent check of the error that `relume compress` reports (paper Eq. 16).
 
-Reads an original DiLiGenT-layout field folder (images, filenames.txt, optional
-light_intensities.txt and mask.png) and a folder written by `relume decompress`, with NumPy and
-OpenImageIO's Python bindings only (none of relume's code), and prints Eq. 16 over the functions
-inside the original mask:
+Reads an original DiLiGenT-layout field folder (images listed in filenames.txt or numbered
+1.png, 2.png, ...; optional light_intensities.txt and mask.png) and a folder written by
+`relume decompress`, with NumPy and OpenImageIO's Python bindings only (none of relume's code),
+and prints Eq. 16 over the functions inside the original mask:
 
     err = (1/n) sum_p ( sum_i (R[p,i] - R~[p,i])^2 / sum_i R[p,i]^2 )
 
@@ -33,10 +33,21 @@ def read_image(path):
     return np.asarray(pixels, dtype=np.float64)
 
 
+IMAGE_EXTENSIONS = {".png", ".exr", ".hdr", ".tif", ".tiff", ".jpg", ".jpeg", ".pfm"}
+
+
 def image_names(folder):
+    """The images in light order: filenames.txt, else the numbered images by number, as relume."""
     listing = os.path.join(folder, "filenames.txt")
-    with open(listing) as names:
-        return [line.strip() for line in names if line.strip()]
+    if os.path.exists(listing):
+        with open(listing) as names:
+            return [line.strip() for line in names if line.strip()]
+    numbered = [name for name in os.listdir(folder)
+                if os.path.splitext(name)[0].isdigit()
+                and os.path.splitext(name)[1].lower() in IMAGE_EXTENSIONS]
+    if not numbered:
+        sys.exit(f"check_error: {folder} has no filenames.txt and no numbered images")
+    return sorted(numbered, key=lambda name: (int(os.path.splitext(name)[0]), name))
 
 
 def load_field(folder):

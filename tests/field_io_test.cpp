@@ -55,6 +55,26 @@ TEST(FieldIo, LoadsFolderAndDividesByIntensity) {
   EXPECT_EQ(field.mask, std::vector<std::uint8_t>(12, 1));
 }
 
+// Without filenames.txt the numbered images are the lights in the order of their numbers, with or
+// without leading zeros: 2.exr is light 2, before 10.exr.
+TEST(FieldIo, NumberedImagesAreTakenInNumericOrder) {
+  TempDir dir;
+  const int lights = 12;
+  std::ofstream directions(dir / "light_directions.txt");
+  for (int i = 1; i <= lights; ++i) {
+    directions << "0 0 1\n";
+    const std::string name = i == 3 ? "003.exr" : std::to_string(i) + ".exr";
+    write_image(dir / name, gradient_image(4, 3, 1, float(i)));
+  }
+  directions.close();
+  const ReflectanceField field = load_field(dir.path());
+  ASSERT_EQ(field.lights(), lights);
+  for (int i = 0; i < lights; ++i) {
+    EXPECT_FLOAT_EQ(field.values(0, i), float(i + 1)) << "light " << i;  // pixel (0, 0): 1 x scale
+    EXPECT_EQ(field.image_names[i], i == 2 ? "003.exr" : std::to_string(i + 1) + ".exr");
+  }
+}
+
 TEST(FieldIo, WriteFolderRoundTripsExactly) {
   TempDir dir;
   write_small_folder(dir / "in");
