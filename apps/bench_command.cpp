@@ -292,10 +292,11 @@ const CommandRegistration registration{
                           "Buffer size of the read/copy ceiling kernels in MiB (default 256)");
       command->add_option(
           "--work-group", options->relighter.work_group_rows,
-          "Rows per work-group of the row kernels (default: 256 on CPUs, 64 otherwise)");
+          "Rows per work-group of the row kernels (default: 1024 on CPUs, 64 otherwise)");
       command->add_option("--slice", options->relighter.slice_rows,
-                          "Rows per slice of the W and residual layout (default: the row vector on "
-                          "CPUs, 32 otherwise)");
+                          "Rows per slice of the W and residual layout (default on CPUs: the tallest "
+                          "of 4096, 2048, ... whose padding adds at most 1/8 to the residual; 32 "
+                          "otherwise)");
       command->add_option(
           "--row-vector", options->relighter.row_vector,
           "Rows per work-item of single-frame passes: 1, 4, 8 or 16 (default: 16 on "

@@ -46,6 +46,7 @@ nlohmann::ordered_json to_json(const BenchRecord& record) {
       {"run_seconds", record.run_seconds},
   };
   if (!record.pattern.empty()) json["access_pattern"] = record.pattern;
+  if (!record.layout.is_null()) json["layout"] = record.layout;
   if (record.residual) {
     json["residual_cap"] = residual_cap_json(record.residual->cap);
     if (record.in_sweep()) {

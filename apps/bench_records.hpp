@@ -33,6 +33,7 @@ struct BenchRecord {
   std::optional<double> wall_seconds;     // median of whole calls (upload + kernels + read-back)
   std::string pattern;                    // access pattern of a ceiling kernel
   std::optional<ResidualPoint> residual;  // for kernels that read the residual
+  nlohmann::ordered_json layout;          // relighting kernels: slice, work-group and row vector
 
   double gbps() const { return 1e-9 * double(bytes) / seconds; }
   bool in_sweep() const { return residual && residual->error; }

@@ -105,6 +105,9 @@ void RelightRuns::run_round(const LightRgb& light) {
 std::vector<BenchRecord> RelightRuns::records(const OpenClDevice& device, double peak_gbps) const {
   const std::string& platform = device.platform_name;
   const std::string& name = device.device_name;
+  const nlohmann::ordered_json layout = {{"slice_rows", relighter_.slice_rows()},
+                                         {"work_group_rows", relighter_.work_group_rows()},
+                                         {"row_vector", relighter_.row_vector()}};
   std::vector<BenchRecord> records;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const PointRuns& runs = runs_[i];
@@ -122,6 +125,7 @@ std::vector<BenchRecord> RelightRuns::records(const OpenClDevice& device, double
     records.back().wall_seconds = median_seconds(runs.batched_wall);
     records.back().residual = points_[i];
   }
+  for (BenchRecord& record : records) record.layout = layout;
   return records;
 }
 

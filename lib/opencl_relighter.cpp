@@ -138,6 +138,23 @@ std::uint64_t RelightTiming::kernel_bytes() const {
   return total;
 }
 
+int tall_slice_rows(const CompressedField& field, int row_vector) {
+  const std::vector<std::uint32_t>& offsets = field.residual.row_offsets;
+  const std::size_t rows = field.stored_rows();
+  const std::uint64_t stored = field.residual.nonzeros();
+  for (int slice = 4096; slice > row_vector; slice /= 2) {
+    std::uint64_t padded = 0;  // slots of the layout: each slice's width times its rows
+    for (std::size_t first = 0; first < rows; first += std::size_t(slice)) {
+      std::uint32_t width = 0;
+      for (std::size_t s = first; s < std::min(rows, first + slice); ++s)
+        width = std::max(width, offsets[s + 1] - offsets[s]);
+      padded += std::uint64_t(width) * std::uint64_t(slice);
+    }
+    if (padded * 8 <= stored * 9) return slice;
+  }
+  return row_vector;
+}
+
 const KernelTiming& RelightTiming::kernel(const std::string& name) const {
   for (const auto& timing : kernels)
     if (timing.kernel == name) return timing;
@@ -175,10 +192,12 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
   light_id_bytes_ = index_bytes(field.lights);
   const bool cpu = context.device().type == "cpu";
   work_group_rows_ = std::size_t(options.work_group_rows ? options.work_group_rows
-                                 : cpu                   ? 256
+                                 : cpu                   ? 1024
                                                          : 64);
   row_vector_ = options.row_vector ? options.row_vector : cpu ? 16 : 1;
-  slice_rows_ = options.slice_rows ? options.slice_rows : cpu ? row_vector_ : 32;
+  slice_rows_ = options.slice_rows ? options.slice_rows
+                : cpu              ? tall_slice_rows(field, row_vector_)
+                                   : 32;
   if ((row_vector_ != 1 && row_vector_ != 4 && row_vector_ != 8 && row_vector_ != 16) ||
       slice_rows_ % row_vector_ != 0 || work_group_rows_ % row_vector_ != 0)
     throw Error("OpenCL relighter: row vector " + std::to_string(row_vector_) +

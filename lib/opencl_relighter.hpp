@@ -37,11 +37,19 @@ struct RelightTiming {
   const KernelTiming& kernel(const std::string& name) const;  // throws Error when absent
 };
 
+// Rows per slice for CPU devices: the tallest power of two from 4096 down to row_vector whose
+// padding (each slice is as wide as its longest residual row) adds at most 1/8 to the field's
+// stored residual entries. In a tall slice each entry index of many rows is one contiguous run,
+// so a residual cap reads only the runs it uses; in short slices the hardware prefetchers fetch
+// the skipped entries too (docs/relighting.md, "Residual cap").
+int tall_slice_rows(const CompressedField& field, int row_vector);
+
 struct OpenClRelighterOptions {
-  // Rows per slice of the W and residual layout (SLICE_ROWS); 0: the row vector on CPU devices
-  // (each work-item then reads one contiguous block), 32 (a warp) on others.
+  // Rows per slice of the W and residual layout (SLICE_ROWS); 0: on CPU devices the tallest of
+  // 4096, 2048, ... rows whose padding adds at most 1/8 to the residual (tall_slice_rows), 32 (a
+  // warp) on others.
   int slice_rows = 0;
-  int work_group_rows = 0;  // rows per work-group; 0: 256 on CPU devices, 64 on others
+  int work_group_rows = 0;  // rows per work-group; 0: 1024 on CPU devices, 64 on others
   int max_batch = 32;       // frames per pass; longer batches are relit in passes of this size
   // Rows per work-item of single-frame passes (vector loads and gathers: ROW_VECTOR); 0: 16 on
   // CPU devices, 1 on others. Must be 1, 4, 8 or 16 and divide the slice rows.
@@ -73,6 +81,10 @@ class OpenClRelighter {
   std::vector<float> cluster_products(const LightRgb& light);
 
   const RelightTiming& last_timing() const { return last_timing_; }
+  // The layout in use: the options as resolved for this device and field.
+  int slice_rows() const { return slice_rows_; }
+  int work_group_rows() const { return int(work_group_rows_); }
+  int row_vector() const { return row_vector_; }
   // Field data held on the device, in bytes.
   std::uint64_t device_bytes() const { return device_bytes_; }
   // Entries of the longest residual row, and the share of stored residual slots that are zero

@@ -57,6 +57,12 @@ TEST(BenchCommand, WritesOneRecordPerDeviceAndKernel) {
     if (kernel == "spmv" || kernel == "relight") {
       EXPECT_EQ(record["residual_cap"], 2);
     }
+    if (platform != "reference" && kernel != "read" && kernel != "copy" && kernel != "assign") {
+      // 384 rows of 4 entries each: 128-row slices are the tallest without padding rows.
+      EXPECT_EQ(record["layout"]["slice_rows"], 128) << record.dump();
+      EXPECT_EQ(record["layout"]["work_group_rows"], 1024) << record.dump();
+      EXPECT_EQ(record["layout"]["row_vector"], 16) << record.dump();
+    }
     if (kernel == "assign") {
       // 64 rows x 9 lights, 64 x 3 candidates, 3 clusters x 3 terms x 9 lights of bases read;
       // best, second, objective and 3 weights written per row; all 4 bytes each.

@@ -245,7 +245,7 @@ TEST(OpenClRelighter, EveryRowVectorWidthAndSliceGivesTheSameImage) {
   const LightRgb light = random_light_vector(field.lights, 51);
   const Image expected = relight_compressed_reference(field, light, 5);
   for (const auto& [row_vector, slice] :
-       std::vector<std::pair<int, int>>{{1, 32}, {4, 16}, {8, 8}}) {
+       std::vector<std::pair<int, int>>{{1, 32}, {4, 16}, {8, 8}, {16, 4096}, {1, 4096}}) {
     OpenClRelighterOptions options;
     options.row_vector = row_vector;
     options.slice_rows = slice;
@@ -316,7 +316,10 @@ TEST(OpenClRelighter, ReportsKernelTimesAndCappedBytes) {
   EXPECT_EQ(relighter.residual_bytes(0), 0u);
   EXPECT_EQ(relighter.residual_bytes(3), rows * 3 * 5);
   EXPECT_EQ(relighter.residual_bytes(full_residual), rows * 7 * 5);
-  EXPECT_DOUBLE_EQ(relighter.residual_padding(), 0.0);
+  // Equal rows pad nothing but the unused rows of the last slice.
+  const std::uint64_t slices = (rows + relighter.slice_rows() - 1) / relighter.slice_rows();
+  const std::uint64_t slots = slices * relighter.slice_rows() * 7;
+  EXPECT_DOUBLE_EQ(relighter.residual_padding(), double(slots - rows * 7) / double(slots));
 
   relighter.relight(random_light_vector(field.lights, 91), 3);
   const RelightTiming& timing = relighter.last_timing();
@@ -328,6 +331,30 @@ TEST(OpenClRelighter, ReportsKernelTimesAndCappedBytes) {
   const std::uint64_t capped_rows_bytes = timing.kernel("rows").bytes;
   relighter.relight(random_light_vector(field.lights, 92), full_residual);
   EXPECT_EQ(relighter.last_timing().kernel("rows").bytes - capped_rows_bytes, rows * 4 * 5);
+}
+
+// CPU slices are as tall as the padding allows: equal rows take 4096-row slices, and a field
+// whose row lengths vary takes shorter ones, padding at most 1/8 of its entries.
+TEST(OpenClRelighter, CpuSlicesAreTallUnlessThePaddingGrows) {
+  RandomFieldShape shape;  // 640 x 640 RGB, 12 entries per row
+  const CompressedField equal = random_compressed_field(shape);
+  EXPECT_EQ(tall_slice_rows(equal, 16), 4096);
+  OpenClRelighter relighter(pocl(), equal);
+  EXPECT_EQ(relighter.slice_rows(), 4096);
+  EXPECT_LE(relighter.residual_padding(), 1.0 / 9);
+
+  shape.vary_residual = true;  // 0 to 12 entries per row, uniformly at random
+  const CompressedField varied = random_compressed_field(shape);
+  const int slice = tall_slice_rows(varied, 16);
+  EXPECT_LT(slice, 4096);
+  EXPECT_GE(slice, 16);
+  OpenClRelighter varied_relighter(pocl(), varied);
+  EXPECT_EQ(varied_relighter.slice_rows(), slice);
+  if (slice > 16) EXPECT_LE(varied_relighter.residual_padding(), 1.0 / 9);
+  // An explicit slice height is kept.
+  OpenClRelighterOptions options;
+  options.slice_rows = 64;
+  EXPECT_EQ(OpenClRelighter(pocl(), varied, options).slice_rows(), 64);
 }
 
 TEST(OpenClRelighter, ReusedImagesAndBuffersStayCorrect) {
