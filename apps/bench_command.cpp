@@ -297,6 +297,9 @@ const CommandRegistration registration{
                           "Rows per slice of the W and residual layout (default on CPUs: the tallest "
                           "of 4096, 2048, ... whose padding adds at most 1/8 to the residual; 32 "
                           "otherwise)");
+      command->add_option("--head-entries", options->relighter.head_entries,
+                          "CPUs: residual entries per row kept in the slices; the rest lie in "
+                          "groups of one row vector (default 24)");
       command->add_option(
           "--row-vector", options->relighter.row_vector,
           "Rows per work-item of single-frame passes: 1, 4, 8 or 16 (default: 16 on "

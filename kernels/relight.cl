@@ -9,10 +9,12 @@
 //                             + sum_{e < min(width, cap)} E[s][e] * I[i_e][c][b]
 //   residual_rows: the residual term alone (the residual SpMV).
 //     One work-item per stored row s (function p, channel c = p % CHANNELS, cluster k). Rows are
-//     grouped in slices of SLICE_ROWS; inside a slice, W and E are stored slot-major (all rows'
-//     term j, then term j+1; all rows' entry e, then e+1), so consecutive work-items read
-//     consecutive addresses. A slice's residual is padded with zero entries to the width of its
-//     longest row: reading a padded entry adds 0 * I[0]. Per-row arrays are padded to whole
+//     grouped in slices of SLICE_ROWS; inside a slice, W is stored slot-major (all rows' term j,
+//     then term j+1), so consecutive work-items read consecutive addresses. The residual
+//     (lib/relight_layout.hpp) has a head, entries [0, HEAD_ENTRIES) in the slices, and with
+//     TAIL_ROWS > 0 a tail, the later entries in groups of TAIL_ROWS rows; each group is stored
+//     slot-major too (all rows' entry e, then e+1) and padded with zero entries to the width of
+//     its longest row: reading a padded entry adds 0 * I[0]. Per-row arrays are padded to whole
 //     slices.
 //     With BATCH == 1 and ROW_VECTOR > 1 (CPU devices), a work-item relights ROW_VECTOR
 //     consecutive rows of a slice with vector loads and gathers; otherwise a work-item relights
@@ -46,6 +48,12 @@
 #endif
 #ifndef ROW_VECTOR
 #define ROW_VECTOR 1  // rows per work-item when BATCH == 1: 1, 4, 8 or 16
+#endif
+#ifndef TAIL_ROWS
+#define TAIL_ROWS 0  // rows per group of the residual's tail; 0: no tail
+#endif
+#ifndef HEAD_ENTRIES
+#define HEAD_ENTRIES 0xffffffffu  // residual entries per row in the slices
 #endif
 
 #define BATCH_VECTORS ((BATCH + BATCH_WIDTH - 1) / BATCH_WIDTH)
@@ -108,21 +116,37 @@ __kernel void cluster_products(const uint light_pairs, __global const float4* bl
 }
 #endif
 
-// Adds the first min(slice width, cap) residual entries of `row` times the light vector.
-inline void add_residual(const uint row, const uint c, const uint cap,
-                         __global const uint* slice_offsets, __global const float* residual_values,
-                         __global const LIGHT_T* residual_lights, __global const float* light,
-                         frames* sums) {
-  const uint slice = row / SLICE_ROWS;
-  const uint begin = slice_offsets[slice] + row % SLICE_ROWS;
-  const uint used = min((slice_offsets[slice + 1] - slice_offsets[slice]) / SLICE_ROWS, cap);
+// Adds the first min(group width, cap) entries of `row` in one residual region (groups of
+// group_rows rows starting at offsets[row / group_rows]) times the light vector.
+inline void add_region(const uint row, const uint group_rows, const uint c, const uint cap,
+                       __global const uint* offsets, __global const float* residual_values,
+                       __global const LIGHT_T* residual_lights, __global const float* light,
+                       frames* sums) {
+  const uint group = row / group_rows;
+  const uint begin = offsets[group] + row % group_rows;
+  const uint used = min((offsets[group + 1] - offsets[group]) / group_rows, cap);
   for (uint e = 0; e < used; ++e) {
-    const float value = residual_values[begin + e * SLICE_ROWS];
+    const float value = residual_values[begin + e * group_rows];
     __global const float* frames_of =
-        light + (residual_lights[begin + e * SLICE_ROWS] * CHANNELS + c) * BATCH_PAD;
+        light + (residual_lights[begin + e * group_rows] * CHANNELS + c) * BATCH_PAD;
     for (int v = 0; v < BATCH_VECTORS; ++v)
       sums[v] += value * load_frames(frames_of + v * BATCH_WIDTH);
   }
+}
+
+// Adds the first `cap` residual entries of `row` (head, then tail) times the light vector.
+inline void add_residual(const uint row, const uint c, const uint cap,
+                         __global const uint* slice_offsets, __global const uint* tail_offsets,
+                         __global const float* residual_values,
+                         __global const LIGHT_T* residual_lights, __global const float* light,
+                         frames* sums) {
+  add_region(row, SLICE_ROWS, c, cap, slice_offsets, residual_values, residual_lights, light,
+             sums);
+#if TAIL_ROWS > 0
+  if (cap > HEAD_ENTRIES)
+    add_region(row, TAIL_ROWS, c, cap - HEAD_ENTRIES, tail_offsets, residual_values,
+               residual_lights, light, sums);
+#endif
 }
 
 inline void write_frames(const uint p, const uint frame_stride, const frames* sums,
@@ -172,25 +196,43 @@ inline row_floats residual_term(const uint entry, const row_ints c,
   return load_rows(residual_values + entry) * gather(light, index);
 }
 
-// Residual term of ROW_VECTOR rows starting at `first` (inside one slice).
-inline row_floats residual_of_rows(const uint first, const row_ints c, const uint cap,
-                                   __global const uint* slice_offsets,
-                                   __global const float* residual_values,
-                                   __global const LIGHT_T* residual_lights,
-                                   __global const float* light) {
-  const uint slice = first / SLICE_ROWS;
-  const uint begin = slice_offsets[slice] + first % SLICE_ROWS;
-  const uint used = min((slice_offsets[slice + 1] - slice_offsets[slice]) / SLICE_ROWS, cap);
+// The first min(group width, cap) entries of ROW_VECTOR rows starting at `first` (inside one
+// group) in one residual region (groups of group_rows rows) times the light vector.
+inline row_floats region_of_rows(const uint first, const uint group_rows, const row_ints c,
+                                 const uint cap, __global const uint* offsets,
+                                 __global const float* residual_values,
+                                 __global const LIGHT_T* residual_lights,
+                                 __global const float* light) {
+  const uint group = first / group_rows;
+  const uint begin = offsets[group] + first % group_rows;
+  const uint used = min((offsets[group + 1] - offsets[group]) / group_rows, cap);
   // Two sums, so that consecutive entries' gathers and multiply-adds overlap.
   row_floats even = (row_floats)(0.0f), odd = (row_floats)(0.0f);
   uint e = 0;
   for (; e + 1 < used; e += 2) {
-    even += residual_term(begin + e * SLICE_ROWS, c, residual_values, residual_lights, light);
-    odd += residual_term(begin + (e + 1) * SLICE_ROWS, c, residual_values, residual_lights, light);
+    even += residual_term(begin + e * group_rows, c, residual_values, residual_lights, light);
+    odd += residual_term(begin + (e + 1) * group_rows, c, residual_values, residual_lights, light);
   }
   if (e < used)
-    even += residual_term(begin + e * SLICE_ROWS, c, residual_values, residual_lights, light);
+    even += residual_term(begin + e * group_rows, c, residual_values, residual_lights, light);
   return even + odd;
+}
+
+// Residual term of ROW_VECTOR rows starting at `first`: the head, then the tail.
+inline row_floats residual_of_rows(const uint first, const row_ints c, const uint cap,
+                                   __global const uint* slice_offsets,
+                                   __global const uint* tail_offsets,
+                                   __global const float* residual_values,
+                                   __global const LIGHT_T* residual_lights,
+                                   __global const float* light) {
+  row_floats sums = region_of_rows(first, SLICE_ROWS, c, cap, slice_offsets, residual_values,
+                                   residual_lights, light);
+#if TAIL_ROWS > 0
+  if (cap > HEAD_ENTRIES)
+    sums += region_of_rows(first, TAIL_ROWS, c, cap - HEAD_ENTRIES, tail_offsets,
+                           residual_values, residual_lights, light);
+#endif
+  return sums;
 }
 
 // Writes ROW_VECTOR rows' outputs: one vector store when their functions are consecutive.
@@ -213,6 +255,7 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
                            __global const uint* stored_function, __global const CLUSTER_T* cluster,
                            __global const float* weights, __global const float* products,
                            __global const uint* slice_offsets,
+                           __global const uint* tail_offsets,
                            __global const float* residual_values,
                            __global const LIGHT_T* residual_lights, __global const float* light,
                            __global float* output) {
@@ -224,7 +267,8 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
   __global const float* row_weights =
       weights + (first / SLICE_ROWS) * (TERMS * SLICE_ROWS) + first % SLICE_ROWS;
   row_floats sums =
-      residual_of_rows(first, c, cap, slice_offsets, residual_values, residual_lights, light);
+      residual_of_rows(first, c, cap, slice_offsets, tail_offsets, residual_values, residual_lights,
+                       light);
   for (int j = 0; j < TERMS; ++j) {
     const row_ints index = product_index + j * CHANNELS;
     sums += load_rows(row_weights + j * SLICE_ROWS) * gather(products, index);
@@ -235,14 +279,16 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
 __kernel void residual_rows(const uint rows, const uint frame_stride, const uint cap,
                             __global const uint* stored_function,
                             __global const uint* slice_offsets,
+                            __global const uint* tail_offsets,
                             __global const float* residual_values,
                             __global const LIGHT_T* residual_lights, __global const float* light,
                             __global float* output) {
   const uint first = get_global_id(0) * ROW_VECTOR;
   if (first >= rows) return;
   const row_uints p = load_rows(stored_function + first);
-  const row_floats sums = residual_of_rows(first, to_row_ints(p % CHANNELS), cap, slice_offsets,
-                                           residual_values, residual_lights, light);
+  const row_floats sums =
+      residual_of_rows(first, to_row_ints(p % CHANNELS), cap, slice_offsets, tail_offsets,
+                       residual_values, residual_lights, light);
   write_rows(first, rows, p, sums, output);
 }
 
@@ -252,6 +298,7 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
                            __global const uint* stored_function, __global const CLUSTER_T* cluster,
                            __global const float* weights, __global const float* products,
                            __global const uint* slice_offsets,
+                           __global const uint* tail_offsets,
                            __global const float* residual_values,
                            __global const LIGHT_T* residual_lights, __global const float* light,
                            __global float* output) {
@@ -270,13 +317,15 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
     for (int v = 0; v < BATCH_VECTORS; ++v)
       sums[v] += w * load_frames(row_products + j * CHANNELS * BATCH_PAD + v * BATCH_WIDTH);
   }
-  add_residual(row, c, cap, slice_offsets, residual_values, residual_lights, light, sums);
+  add_residual(row, c, cap, slice_offsets, tail_offsets, residual_values, residual_lights, light,
+               sums);
   write_frames(p, frame_stride, sums, output);
 }
 
 __kernel void residual_rows(const uint rows, const uint frame_stride, const uint cap,
                             __global const uint* stored_function,
                             __global const uint* slice_offsets,
+                            __global const uint* tail_offsets,
                             __global const float* residual_values,
                             __global const LIGHT_T* residual_lights, __global const float* light,
                             __global float* output) {
@@ -285,8 +334,8 @@ __kernel void residual_rows(const uint rows, const uint frame_stride, const uint
   const uint p = stored_function[row];
   frames sums[BATCH_VECTORS];
   for (int v = 0; v < BATCH_VECTORS; ++v) sums[v] = (frames)(0.0f);
-  add_residual(row, p % CHANNELS, cap, slice_offsets, residual_values, residual_lights, light,
-               sums);
+  add_residual(row, p % CHANNELS, cap, slice_offsets, tail_offsets, residual_values,
+               residual_lights, light, sums);
   write_frames(p, frame_stride, sums, output);
 }
 

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "error.hpp"
+#include "relight_layout.hpp"
 
 namespace relume {
 namespace {
@@ -37,77 +38,6 @@ std::vector<std::uint8_t> narrow_indices(const std::vector<std::uint32_t>& value
   return packed;
 }
 
-// The field in the kernels' layout (see kernels/relight.cl), on the host before upload.
-struct DeviceLayout {
-  std::vector<std::uint32_t> stored_function;  // padded to whole slices
-  std::vector<std::uint32_t> cluster;          // padded to whole slices
-  std::vector<float> weights;                  // slot-major inside each slice
-  std::vector<std::uint32_t> slice_offsets;    // first residual slot of each slice, and the end
-  std::vector<std::uint32_t> slice_width;      // residual entries per row in each slice
-  std::vector<std::uint32_t> slice_lanes;      // real rows in each slice
-  std::vector<float> residual_values;          // slot-major inside each slice, zero padded
-  std::vector<std::uint32_t> residual_lights;
-  std::vector<float> blocks;  // F^k in 2x2 blocks, zero-padded to even terms and lights
-};
-
-DeviceLayout lay_out_field(const CompressedField& field, std::size_t slice, int lights_even) {
-  DeviceLayout layout;
-  const std::size_t rows = field.stored_rows();
-  const std::size_t slices = (rows + slice - 1) / slice;
-  const int terms = field.terms;
-  layout.stored_function.assign(slices * slice, 0);
-  layout.cluster.assign(slices * slice, 0);
-  std::copy(field.stored_function.begin(), field.stored_function.end(),
-            layout.stored_function.begin());
-  std::copy(field.cluster.begin(), field.cluster.end(), layout.cluster.begin());
-  layout.weights.assign(slices * slice * terms, 0.0f);
-  for (std::size_t s = 0; s < rows; ++s)
-    for (int j = 0; j < terms; ++j)
-      layout.weights[(s / slice * terms + j) * slice + s % slice] =
-          field.weights(Eigen::Index(s), j);
-
-  const auto& residual = field.residual;
-  layout.slice_offsets.assign(slices + 1, 0);
-  layout.slice_width.assign(slices, 0);
-  layout.slice_lanes.assign(slices, 0);
-  for (std::size_t g = 0; g < slices; ++g) {
-    const std::size_t end_row = std::min(rows, (g + 1) * slice);
-    std::uint32_t width = 0;
-    for (std::size_t s = g * slice; s < end_row; ++s)
-      width = std::max(width, residual.row_offsets[s + 1] - residual.row_offsets[s]);
-    layout.slice_width[g] = width;
-    layout.slice_lanes[g] = std::uint32_t(end_row - g * slice);
-    const std::uint64_t end = std::uint64_t(layout.slice_offsets[g]) + std::uint64_t(width) * slice;
-    if (end > 0xffffffffull)
-      throw Error("OpenCL relighter: the padded residual holds more than 2^32 entries");
-    layout.slice_offsets[g + 1] = std::uint32_t(end);
-  }
-  layout.residual_values.assign(layout.slice_offsets.back(), 0.0f);
-  layout.residual_lights.assign(layout.slice_offsets.back(), 0);
-  for (std::size_t s = 0; s < rows; ++s) {
-    const std::uint32_t begin = residual.row_offsets[s];
-    const std::uint32_t count = residual.row_offsets[s + 1] - begin;
-    for (std::uint32_t e = 0; e < count; ++e) {
-      const std::size_t slot = layout.slice_offsets[s / slice] + std::size_t(e) * slice + s % slice;
-      layout.residual_values[slot] = residual.values[begin + e];
-      layout.residual_lights[slot] = residual.light_index[begin + e];
-    }
-  }
-
-  // Block (jb, ib) holds (F[2jb][2ib], F[2jb][2ib+1], F[2jb+1][2ib], F[2jb+1][2ib+1]).
-  const int term_pairs = (terms + 1) / 2;
-  const int light_pairs = lights_even / 2;
-  layout.blocks.assign(std::size_t(field.clusters) * term_pairs * light_pairs * 4, 0.0f);
-  for (int k = 0; k < field.clusters; ++k)
-    for (int j = 0; j < terms; ++j)
-      for (int i = 0; i < field.lights; ++i) {
-        const std::size_t block = (std::size_t(k) * term_pairs + j / 2) * light_pairs + i / 2;
-        layout.blocks[block * 4 + (j % 2) * 2 + i % 2] =
-            field.basis(k)[std::size_t(j) * field.lights + i];
-      }
-  return layout;
-}
-
 template <typename T>
 cl::Buffer upload(const cl::Context& context, const std::vector<T>& values,
                   std::uint64_t& total_bytes) {
@@ -136,23 +66,6 @@ std::uint64_t RelightTiming::kernel_bytes() const {
   std::uint64_t total = 0;
   for (const auto& timing : kernels) total += timing.bytes;
   return total;
-}
-
-int tall_slice_rows(const CompressedField& field, int row_vector) {
-  const std::vector<std::uint32_t>& offsets = field.residual.row_offsets;
-  const std::size_t rows = field.stored_rows();
-  const std::uint64_t stored = field.residual.nonzeros();
-  for (int slice = 4096; slice > row_vector; slice /= 2) {
-    std::uint64_t padded = 0;  // slots of the layout: each slice's width times its rows
-    for (std::size_t first = 0; first < rows; first += std::size_t(slice)) {
-      std::uint32_t width = 0;
-      for (std::size_t s = first; s < std::min(rows, first + slice); ++s)
-        width = std::max(width, offsets[s + 1] - offsets[s]);
-      padded += std::uint64_t(width) * std::uint64_t(slice);
-    }
-    if (padded * 8 <= stored * 9) return slice;
-  }
-  return row_vector;
 }
 
 const KernelTiming& RelightTiming::kernel(const std::string& name) const {
@@ -195,8 +108,17 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
                                  : cpu                   ? 1024
                                                          : 64);
   row_vector_ = options.row_vector ? options.row_vector : cpu ? 16 : 1;
+  for (std::size_t s = 0; s < rows_; ++s)
+    widest_row_ = std::max(widest_row_, int(field.residual.row_offsets[s + 1] -
+                                            field.residual.row_offsets[s]));
+  // CPUs keep the first head_entries_ entries of each row in tall slices and the rest, if any row
+  // is longer, in groups of one row vector (relight_layout.hpp); other devices keep every entry
+  // in 32-row slices.
+  head_entries_ = cpu ? std::uint32_t(options.head_entries ? options.head_entries : 24)
+                      : 0xffffffffu;
+  tail_rows_ = cpu && std::uint32_t(widest_row_) > head_entries_ ? row_vector_ : 0;
   slice_rows_ = options.slice_rows ? options.slice_rows
-                : cpu              ? tall_slice_rows(field, row_vector_)
+                : cpu              ? tall_slice_rows(field, row_vector_, head_entries_)
                                    : 32;
   if ((row_vector_ != 1 && row_vector_ != 4 && row_vector_ != 8 && row_vector_ != 16) ||
       slice_rows_ % row_vector_ != 0 || work_group_rows_ % row_vector_ != 0)
@@ -208,11 +130,11 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
     throw Error("OpenCL relighter: " + context.device().label() +
                 " is big-endian; the packed index arrays expect a little-endian device");
 
-  const DeviceLayout layout = lay_out_field(field, std::size_t(slice_rows_), lights_even_);
-  slice_width_ = layout.slice_width;
-  slice_lanes_ = layout.slice_lanes;
-  for (const auto width : slice_width_) widest_row_ = std::max(widest_row_, int(width));
-  stored_entries_ = layout.slice_offsets.back();
+  const RelightLayout layout =
+      lay_out_field(field, {slice_rows_, tail_rows_, head_entries_}, lights_even_);
+  head_ = layout.head;
+  tail_ = layout.tail;
+  stored_entries_ = layout.tail.offsets.back();
   nonzeros_ = field.residual.nonzeros();
   try {
     const cl::Context& cl_context = context.context();
@@ -220,7 +142,8 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
     cluster_ = upload(cl_context, narrow_indices(layout.cluster, cluster_id_bytes_), device_bytes_);
     weights_ = upload(cl_context, layout.weights, device_bytes_);
     blocks_ = upload(cl_context, layout.blocks, device_bytes_);
-    slice_offsets_ = upload(cl_context, layout.slice_offsets, device_bytes_);
+    slice_offsets_ = upload(cl_context, layout.head.offsets, device_bytes_);
+    tail_offsets_ = upload(cl_context, layout.tail.offsets, device_bytes_);
     residual_values_ = upload(cl_context, layout.residual_values, device_bytes_);
     residual_lights_ =
         upload(cl_context, narrow_indices(layout.residual_lights, light_id_bytes_), device_bytes_);
@@ -230,7 +153,8 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
   }
   base_options_ =
       "-DTERMS=" + std::to_string(field.terms) + " -DCHANNELS=" + std::to_string(field.channels) +
-      " -DSLICE_ROWS=" + std::to_string(slice_rows_) +
+      " -DSLICE_ROWS=" + std::to_string(slice_rows_) + " -DTAIL_ROWS=" +
+      std::to_string(tail_rows_) + " -DHEAD_ENTRIES=" + std::to_string(head_entries_) + "u" +
       " -DCLUSTER_T=" + index_type(cluster_id_bytes_) +
       " -DLIGHT_T=" + index_type(light_id_bytes_) + " -DROW_VECTOR=" + std::to_string(row_vector_);
 }
@@ -240,11 +164,14 @@ double OpenClRelighter::residual_padding() const {
 }
 
 std::uint64_t OpenClRelighter::residual_bytes(int residual_cap) const {
-  std::uint64_t slots = 0;
-  for (std::size_t g = 0; g < slice_width_.size(); ++g)
-    slots += std::uint64_t(std::min<std::uint32_t>(slice_width_[g], std::uint32_t(residual_cap))) *
-             slice_lanes_[g];
+  const std::uint32_t cap = std::uint32_t(residual_cap);
+  const std::uint64_t slots =
+      head_.slots_read(cap) + (reads_tail(residual_cap) ? tail_.slots_read(cap - head_entries_) : 0);
   return slots * std::uint64_t(sizeof(float) + light_id_bytes_);
+}
+
+bool OpenClRelighter::reads_tail(int residual_cap) const {
+  return tail_rows_ > 0 && std::uint32_t(residual_cap) > head_entries_;
 }
 
 OpenClRelighter::BatchProgram& OpenClRelighter::batch_program(int batch) {
@@ -327,6 +254,7 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
     kernel.setArg(arg++, program.products);
   }
   kernel.setArg(arg++, slice_offsets_);
+  kernel.setArg(arg++, tail_offsets_);
   kernel.setArg(arg++, residual_values_);
   kernel.setArg(arg++, residual_lights_);
   kernel.setArg(arg++, program.light);
@@ -341,11 +269,13 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
                                         cl::NDRange(local), nullptr, &event);
   KernelTiming timing{with_basis ? "rows" : "spmv", 0, 0};
   // Per row: its function index, its output per frame; with the basis also its cluster id and
-  // weights. Shared by all rows: the slice offsets, the light vectors and the products (cached).
+  // weights. Shared by all rows: the group offsets, the light vectors and the products (cached).
   std::uint64_t per_row = sizeof(std::uint32_t) + std::uint64_t(program.batch) * sizeof(float);
   if (with_basis) per_row += cluster_id_bytes_ + std::uint64_t(shape_.terms) * sizeof(float);
   timing.bytes = rows_ * per_row + residual_bytes(residual_cap) +
-                 (slice_width_.size() + 1) * sizeof(std::uint32_t) + light_buffer_bytes(program) +
+                 (head_.offsets.size() + (reads_tail(residual_cap) ? tail_.offsets.size() : 0)) *
+                     sizeof(std::uint32_t) +
+                 light_buffer_bytes(program) +
                  (with_basis ? products_bytes(program) : 0);
   return {timing, event};
 }

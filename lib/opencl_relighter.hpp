@@ -14,6 +14,7 @@
 #include "compressed_relight_reference.hpp"
 #include "image.hpp"
 #include "opencl_runtime.hpp"
+#include "relight_layout.hpp"
 
 namespace relume {
 
@@ -37,18 +38,14 @@ struct RelightTiming {
   const KernelTiming& kernel(const std::string& name) const;  // throws Error when absent
 };
 
-// Rows per slice for CPU devices: the tallest power of two from 4096 down to row_vector whose
-// padding (each slice is as wide as its longest residual row) adds at most 1/8 to the field's
-// stored residual entries. In a tall slice each entry index of many rows is one contiguous run,
-// so a residual cap reads only the runs it uses; in short slices the hardware prefetchers fetch
-// the skipped entries too (docs/relighting.md, "Residual cap").
-int tall_slice_rows(const CompressedField& field, int row_vector);
-
 struct OpenClRelighterOptions {
-  // Rows per slice of the W and residual layout (SLICE_ROWS); 0: on CPU devices the tallest of
-  // 4096, 2048, ... rows whose padding adds at most 1/8 to the residual (tall_slice_rows), 32 (a
-  // warp) on others.
+  // Rows per slice of the W and residual layout (SLICE_ROWS, lib/relight_layout.hpp); 0: on CPU
+  // devices the tallest of 4096, 2048, ... rows whose padding adds at most 1/8 to the head's
+  // residual entries (tall_slice_rows), 32 (a warp) on others.
   int slice_rows = 0;
+  // CPU devices: residual entries per row in the slices; the rest lie in groups of one row
+  // vector. 0: 24. Other devices keep every entry in the slices.
+  int head_entries = 0;
   int work_group_rows = 0;  // rows per work-group; 0: 1024 on CPU devices, 64 on others
   int max_batch = 32;       // frames per pass; longer batches are relit in passes of this size
   // Rows per work-item of single-frame passes (vector loads and gathers: ROW_VECTOR); 0: 16 on
@@ -85,6 +82,8 @@ class OpenClRelighter {
   int slice_rows() const { return slice_rows_; }
   int work_group_rows() const { return int(work_group_rows_); }
   int row_vector() const { return row_vector_; }
+  // Residual entries per row in the slices (the rest in row-vector groups); unlimited off CPUs.
+  std::uint32_t head_entries() const { return head_entries_; }
   // Field data held on the device, in bytes.
   std::uint64_t device_bytes() const { return device_bytes_; }
   // Entries of the longest residual row, and the share of stored residual slots that are zero
@@ -122,6 +121,7 @@ class OpenClRelighter {
   void run_pass(const std::vector<const LightRgb*>& lights, int residual_cap, Pass pass,
                 Image* images);
   std::uint64_t light_buffer_bytes(const BatchProgram& program) const;
+  bool reads_tail(int residual_cap) const;  // whether a cap reaches past the head
   std::uint64_t products_bytes(const BatchProgram& program) const;
 
   OpenClContext& context_;
@@ -135,6 +135,8 @@ class OpenClRelighter {
   std::size_t work_group_rows_ = 0;
   int row_vector_ = 1;
   int slice_rows_ = 32;
+  int tail_rows_ = 0;
+  std::uint32_t head_entries_ = 0xffffffffu;
   std::uint64_t frame_stride_ = 0;  // floats between frames in the output buffers
 
   cl::Buffer stored_function_;
@@ -142,10 +144,10 @@ class OpenClRelighter {
   cl::Buffer weights_;
   cl::Buffer blocks_;
   cl::Buffer slice_offsets_;
+  cl::Buffer tail_offsets_;
   cl::Buffer residual_values_;
   cl::Buffer residual_lights_;
-  std::vector<std::uint32_t> slice_width_;  // entries per row in each slice
-  std::vector<std::uint32_t> slice_lanes_;  // real rows in each slice
+  ResidualRegion head_, tail_;  // the residual's layout (their offsets are uploaded too)
   int widest_row_ = 0;
   std::uint64_t stored_entries_ = 0;  // residual slots on the device, padding included
   std::uint64_t nonzeros_ = 0;

@@ -62,6 +62,7 @@ TEST(BenchCommand, WritesOneRecordPerDeviceAndKernel) {
       EXPECT_EQ(record["layout"]["slice_rows"], 128) << record.dump();
       EXPECT_EQ(record["layout"]["work_group_rows"], 1024) << record.dump();
       EXPECT_EQ(record["layout"]["row_vector"], 16) << record.dump();
+      EXPECT_EQ(record["layout"]["head_entries"], 24) << record.dump();
     }
     if (kernel == "assign") {
       // 64 rows x 9 lights, 64 x 3 candidates, 3 clusters x 3 terms x 9 lights of bases read;

@@ -239,20 +239,41 @@ TEST(OpenClRelighter, BatchedFramesMatchSingleFrames) {
   }
 }
 
-TEST(OpenClRelighter, EveryRowVectorWidthAndSliceGivesTheSameImage) {
+// Every layout relights the same: rows per work-item, slice height, and on CPUs the split of
+// each row's entries between the slices (head) and row-vector groups (tail), for caps inside the
+// head, across the split and past every row, in single frames and in a batch.
+TEST(OpenClRelighter, EveryRowVectorWidthSliceAndHeadGivesTheSameImage) {
   const CompressedField field = random_compressed_field(small_shape(50));
   ASSERT_NE(field.stored_rows() % 32, 0u) << "the last slice should be partial";
-  const LightRgb light = random_light_vector(field.lights, 51);
-  const Image expected = relight_compressed_reference(field, light, 5);
-  for (const auto& [row_vector, slice] :
-       std::vector<std::pair<int, int>>{{1, 32}, {4, 16}, {8, 8}, {16, 4096}, {1, 4096}}) {
+  const std::vector<LightRgb> lights = {random_light_vector(field.lights, 51),
+                                        random_light_vector(field.lights, 52),
+                                        random_light_vector(field.lights, 53)};
+  struct Layout {
+    int row_vector, slice, head;
+  };
+  for (const Layout layout : std::vector<Layout>{
+           {1, 32, 0}, {4, 16, 0}, {8, 8, 0}, {16, 4096, 0}, {1, 4096, 0}, {16, 4096, 3},
+           {16, 64, 1}, {4, 4096, 6}}) {
     OpenClRelighterOptions options;
-    options.row_vector = row_vector;
-    options.slice_rows = slice;
+    options.row_vector = layout.row_vector;
+    options.slice_rows = layout.slice;
+    options.head_entries = layout.head;
     options.work_group_rows = 64;
     OpenClRelighter relighter(pocl(), field, options);
-    EXPECT_LT(relative_error(relighter.relight(light, 5), expected), float_tolerance)
-        << "row vector " << row_vector << ", slice " << slice;
+    const std::string name = "row vector " + std::to_string(layout.row_vector) + ", slice " +
+                             std::to_string(layout.slice) + ", head " + std::to_string(layout.head);
+    for (const int cap : {2, 5, full_residual}) {
+      EXPECT_LT(relative_error(relighter.relight(lights[0], cap),
+                               relight_compressed_reference(field, lights[0], cap)),
+                float_tolerance)
+          << name << ", cap " << cap;
+      const std::vector<Image> batch = relighter.relight_batch(lights, cap);
+      for (std::size_t b = 0; b < lights.size(); ++b)
+        EXPECT_LT(relative_error(batch[b], relight_compressed_reference(field, lights[b], cap)),
+                  float_tolerance)
+            << name << ", cap " << cap << ", frame " << b;
+    }
+    if (layout.head > 0) EXPECT_EQ(relighter.head_entries(), std::uint32_t(layout.head)) << name;
   }
 }
 
@@ -338,14 +359,14 @@ TEST(OpenClRelighter, ReportsKernelTimesAndCappedBytes) {
 TEST(OpenClRelighter, CpuSlicesAreTallUnlessThePaddingGrows) {
   RandomFieldShape shape;  // 640 x 640 RGB, 12 entries per row
   const CompressedField equal = random_compressed_field(shape);
-  EXPECT_EQ(tall_slice_rows(equal, 16), 4096);
+  EXPECT_EQ(tall_slice_rows(equal, 16, 24), 4096);
   OpenClRelighter relighter(pocl(), equal);
   EXPECT_EQ(relighter.slice_rows(), 4096);
   EXPECT_LE(relighter.residual_padding(), 1.0 / 9);
 
   shape.vary_residual = true;  // 0 to 12 entries per row, uniformly at random
   const CompressedField varied = random_compressed_field(shape);
-  const int slice = tall_slice_rows(varied, 16);
+  const int slice = tall_slice_rows(varied, 16, 24);
   EXPECT_LT(slice, 4096);
   EXPECT_GE(slice, 16);
   OpenClRelighter varied_relighter(pocl(), varied);
