@@ -3,7 +3,8 @@
 # 253 lights, 128 clusters, 4 terms, 12 residual entries per function) RUNS times on one OpenCL
 # device and prints one markdown table row per run plus the median of the runs: read and copy
 # ceilings, residual SpMV and relight GB/s with their share of the device's peak, frames/s of a
-# single frame and of a batch of 16, and the batch's speed-up.
+# single frame and of a batch of 16, and the batch's speed-up. Then one run per residual cap in
+# $CAPS (default "0 3 6 12"): the speed side of the dynamic residual's trade.
 # Usage: scripts/bench_relight.sh [RELUME_BINARY] [RUNS] [more bench options...]
 #   RELUME_BINARY defaults to build/apps/relume, RUNS to 5; the device is RELUME_DEVICE or the
 #   default one (a GPU, else PoCL). JSON records go to $BENCH_DIR (default /tmp/relume-bench-relight).
@@ -59,4 +60,27 @@ for r in rows + [median]:
           f'| {r["relight"]:.1f} ({100 * r["relight_peak"]:.0f}%) '
           f'| {r["fps"]:.0f} ({r["fps_wall"]:.0f}) '
           f'| {r["batched_fps"]:.0f} ({r["batched_fps_wall"]:.0f}) | {r["speedup"]:.1f}x |')
+PY
+
+caps="${CAPS:-0 3 6 12}"
+echo
+echo "residual caps: relume bench --repeats 15 --no-reference --assign-rows 0 --cap N ${device_option[*]} $*"
+for cap in $caps; do
+  RELUME_QUIET=1 "$relume" bench --repeats 15 --no-reference --assign-rows 0 --cap "$cap" \
+    "${device_option[@]}" "$@" --json "$out/cap$cap.json" > /dev/null
+done
+/usr/bin/python3 - "$out" $caps <<'PY'
+import json, sys
+out, caps = sys.argv[1], sys.argv[2:]
+print("| cap | relight MB/frame | relight of peak | relight frames/s | batched frames/s | layout |")
+print("|---|---|---|---|---|---|")
+for cap in caps:
+    records = json.load(open(f"{out}/cap{cap}.json"))["records"]
+    by_kernel = {r["kernel"]: r for r in records if r["platform"] != "reference"}
+    single, batched = by_kernel["relight"], by_kernel["relight_batched"]
+    layout = single["layout"]
+    print(f'| {cap} | {single["bytes"] / 1e6:.1f} | {100 * single["ratio_to_peak"]:.0f}% '
+          f'| {single["frames_per_second"]:.0f} | {batched["frames_per_second"]:.0f} '
+          f'| slices of {layout["slice_rows"]}, work-groups of {layout["work_group_rows"]}, '
+          f'head {layout["head_entries"]} |')
 PY
