@@ -78,12 +78,14 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
                                  const OpenClRelighterOptions& options)
     : context_(context), options_(options) {
   check_relightable(field);
-  if (options.slice_rows < 0 || options.work_group_rows < 0 || options.max_batch < 1 ||
-      options.max_batch > max_batch_limit)
+  if (options.slice_rows < 0 || options.work_group_rows < 0 || options.head_entries < 0 ||
+      options.max_batch < 1 || options.max_batch > max_batch_limit)
     throw Error("OpenCL relighter: slice rows " + std::to_string(options.slice_rows) +
-                ", work-group rows " + std::to_string(options.work_group_rows) + ", max batch " +
-                std::to_string(options.max_batch) + " (expected slice and work-group rows >= 0 " +
-                "and a max batch of 1 to " + std::to_string(max_batch_limit) + ")");
+                ", work-group rows " + std::to_string(options.work_group_rows) +
+                ", head entries " + std::to_string(options.head_entries) + ", max batch " +
+                std::to_string(options.max_batch) +
+                " (expected slice rows, work-group rows and head entries >= 0 and a max batch "
+                "of 1 to " + std::to_string(max_batch_limit) + ")");
   // Frames lie frame_stride_ floats apart in the output: a multiple of 1024 floats plus one cache
   // line, so that the frames' write streams fall into different cache sets (640x640x3 floats is
   // an exact multiple of 4 KiB, which would alias every frame onto the same set).

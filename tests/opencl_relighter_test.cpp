@@ -13,6 +13,7 @@
 #include "error.hpp"
 #include "haar_transform.hpp"
 #include "random_compressed_field.hpp"
+#include "test_support.hpp"
 
 namespace relume {
 namespace {
@@ -405,6 +406,11 @@ TEST(OpenClRelighter, RefusesBadInput) {
   OpenClRelighterOptions options;
   options.row_vector = 3;
   EXPECT_THROW(OpenClRelighter(pocl(), field, options), Error);
+  options.row_vector = 0;
+  options.head_entries = -2;
+  EXPECT_NE(testing::error_message([&] { OpenClRelighter(pocl(), field, options); })
+                .find("head entries -2"),
+            std::string::npos);
   field.residual.light_index[0] = std::uint32_t(field.lights);
   EXPECT_THROW(OpenClRelighter(pocl(), field), Error);
 }
