@@ -2,7 +2,7 @@
 // reconstruction, and every OpenCL relighting kernel (GEMV, residual SpMV, relight, batched
 // relight) on PoCL against the reference with fresh random fields and light vectors: residual
 // caps of 0, below and above the row lengths, empty rows, unstored functions, odd term and light
-// counts, grey fields, the Haar basis, and every row-vector width.
+// counts, grey fields, the Haar basis, every row-vector width, slice height and head/tail split.
 #include "opencl_relighter.hpp"
 
 #include <gtest/gtest.h>
