@@ -293,10 +293,11 @@ const CommandRegistration registration{
       command->add_option(
           "--work-group", options->relighter.work_group_rows,
           "Rows per work-group of the row kernels (default: 1024 on CPUs, 64 otherwise)");
-      command->add_option("--slice", options->relighter.slice_rows,
-                          "Rows per slice of the W and residual layout (default on CPUs: the tallest "
-                          "of 4096, 2048, ... whose padding adds at most 1/8 to the residual; 32 "
-                          "otherwise)");
+      command->add_option(
+          "--slice", options->relighter.slice_rows,
+          "Rows per slice of the W and residual layout (default on CPUs: the tallest "
+          "of 4096, 2048, ... whose padding adds at most 1/8 to the residual; 32 "
+          "otherwise)");
       command->add_option("--head-entries", options->relighter.head_entries,
                           "CPUs: residual entries per row kept in the slices; the rest lie in "
                           "groups of one row vector (default 24)");

@@ -106,9 +106,9 @@ std::vector<BenchRecord> RelightRuns::records(const OpenClDevice& device, double
   const std::string& platform = device.platform_name;
   const std::string& name = device.device_name;
   nlohmann::ordered_json layout = {{"slice_rows", relighter_.slice_rows()},
-                                         {"work_group_rows", relighter_.work_group_rows()},
-                                         {"row_vector", relighter_.row_vector()},
-                                         {"head_entries", nlohmann::ordered_json()}};
+                                   {"work_group_rows", relighter_.work_group_rows()},
+                                   {"row_vector", relighter_.row_vector()},
+                                   {"head_entries", nlohmann::ordered_json()}};
   if (relighter_.head_entries() != 0xffffffffu) layout["head_entries"] = relighter_.head_entries();
   std::vector<BenchRecord> records;
   for (std::size_t i = 0; i < points_.size(); ++i) {

@@ -81,11 +81,12 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
   if (options.slice_rows < 0 || options.work_group_rows < 0 || options.head_entries < 0 ||
       options.max_batch < 1 || options.max_batch > max_batch_limit)
     throw Error("OpenCL relighter: slice rows " + std::to_string(options.slice_rows) +
-                ", work-group rows " + std::to_string(options.work_group_rows) +
-                ", head entries " + std::to_string(options.head_entries) + ", max batch " +
+                ", work-group rows " + std::to_string(options.work_group_rows) + ", head entries " +
+                std::to_string(options.head_entries) + ", max batch " +
                 std::to_string(options.max_batch) +
                 " (expected slice rows, work-group rows and head entries >= 0 and a max batch "
-                "of 1 to " + std::to_string(max_batch_limit) + ")");
+                "of 1 to " +
+                std::to_string(max_batch_limit) + ")");
   // Frames lie frame_stride_ floats apart in the output: a multiple of 1024 floats plus one cache
   // line, so that the frames' write streams fall into different cache sets (640x640x3 floats is
   // an exact multiple of 4 KiB, which would alias every frame onto the same set).
@@ -111,13 +112,13 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
                                                          : 64);
   row_vector_ = options.row_vector ? options.row_vector : cpu ? 16 : 1;
   for (std::size_t s = 0; s < rows_; ++s)
-    widest_row_ = std::max(widest_row_, int(field.residual.row_offsets[s + 1] -
-                                            field.residual.row_offsets[s]));
+    widest_row_ = std::max(widest_row_,
+                           int(field.residual.row_offsets[s + 1] - field.residual.row_offsets[s]));
   // CPUs keep the first head_entries_ entries of each row in tall slices and the rest, if any row
   // is longer, in groups of one row vector (relight_layout.hpp); other devices keep every entry
   // in 32-row slices.
-  head_entries_ = cpu ? std::uint32_t(options.head_entries ? options.head_entries : 24)
-                      : 0xffffffffu;
+  head_entries_ =
+      cpu ? std::uint32_t(options.head_entries ? options.head_entries : 24) : 0xffffffffu;
   tail_rows_ = cpu && std::uint32_t(widest_row_) > head_entries_ ? row_vector_ : 0;
   slice_rows_ = options.slice_rows ? options.slice_rows
                 : cpu              ? tall_slice_rows(field, row_vector_, head_entries_)
@@ -155,8 +156,9 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
   }
   base_options_ =
       "-DTERMS=" + std::to_string(field.terms) + " -DCHANNELS=" + std::to_string(field.channels) +
-      " -DSLICE_ROWS=" + std::to_string(slice_rows_) + " -DTAIL_ROWS=" +
-      std::to_string(tail_rows_) + " -DHEAD_ENTRIES=" + std::to_string(head_entries_) + "u" +
+      " -DSLICE_ROWS=" + std::to_string(slice_rows_) +
+      " -DTAIL_ROWS=" + std::to_string(tail_rows_) +
+      " -DHEAD_ENTRIES=" + std::to_string(head_entries_) + "u" +
       " -DCLUSTER_T=" + index_type(cluster_id_bytes_) +
       " -DLIGHT_T=" + index_type(light_id_bytes_) + " -DROW_VECTOR=" + std::to_string(row_vector_);
 }
@@ -168,7 +170,8 @@ double OpenClRelighter::residual_padding() const {
 std::uint64_t OpenClRelighter::residual_bytes(int residual_cap) const {
   const std::uint32_t cap = std::uint32_t(residual_cap);
   const std::uint64_t slots =
-      head_.slots_read(cap) + (reads_tail(residual_cap) ? tail_.slots_read(cap - head_entries_) : 0);
+      head_.slots_read(cap) +
+      (reads_tail(residual_cap) ? tail_.slots_read(cap - head_entries_) : 0);
   return slots * std::uint64_t(sizeof(float) + light_id_bytes_);
 }
 
@@ -277,8 +280,7 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
   timing.bytes = rows_ * per_row + residual_bytes(residual_cap) +
                  (head_.offsets.size() + (reads_tail(residual_cap) ? tail_.offsets.size() : 0)) *
                      sizeof(std::uint32_t) +
-                 light_buffer_bytes(program) +
-                 (with_basis ? products_bytes(program) : 0);
+                 light_buffer_bytes(program) + (with_basis ? products_bytes(program) : 0);
   return {timing, event};
 }
 

@@ -29,7 +29,7 @@ struct ResidualRegion {
 
 struct RelightLayoutShape {
   int slice_rows = 32;
-  int tail_rows = 0;                        // 0: every entry in the head
+  int tail_rows = 0;                         // 0: every entry in the head
   std::uint32_t head_entries = 0xffffffffu;  // entries per row in the head
 };
 

@@ -194,14 +194,31 @@ IndependentCheck check_error(const std::filesystem::path& original,
   const std::string label = "error_masked (Eq. 16): ";
   const std::size_t at = result.output.find(label);
   EXPECT_NE(at, std::string::npos) << result.output;
-  if (at != std::string::npos) check.error_masked = std::stod(result.output.substr(at + label.size()));
+  if (at != std::string::npos)
+    check.error_masked = std::stod(result.output.substr(at + label.size()));
   return check;
 }
 
+// `relume compress INPUT OPTIONS` into FOLDER/c.relume, then `relume decompress` into
+// DECOMPRESSED; returns the compression report.
+nlohmann::json compress_and_decompress(const std::filesystem::path& input,
+                                       const std::string& options,
+                                       const std::filesystem::path& folder,
+                                       const std::filesystem::path& decompressed) {
+  const std::string container = (folder / "c.relume").string();
+  auto result = testing::run_relume("compress '" + input.string() + "' -o '" + container + "' " +
+                                    options + " --report '" + (folder / "c.json").string() + "'");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  result = testing::run_relume("decompress '" + container + "' -o '" + decompressed.string() + "'");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  return read_json(folder / "c.json");
+}
+
 // Skips the test where the system python lacks what check_error.py needs.
-#define REQUIRE_CHECK_ERROR_PYTHON()                                                           \
+#define REQUIRE_CHECK_ERROR_PYTHON()                                                          \
   if (testing::run_command("/usr/bin/python3 -c 'import numpy, OpenImageIO'").exit_code != 0) \
-  GTEST_SKIP() << "/usr/bin/python3 lacks numpy or OpenImageIO (python3-numpy, python3-openimageio)"
+  GTEST_SKIP() << "/usr/bin/python3 lacks numpy or OpenImageIO (python3-numpy, "              \
+                  "python3-openimageio)"
 
 // The compress report's error recomputed from the decompressed EXRs by
 // scripts/check_error.py (NumPy and OpenImageIO's Python bindings, none of relume's code).
@@ -210,17 +227,11 @@ TEST(CompressCommand, ReportedErrorMatchesAnIndependentCheckOnRealData) {
   REQUIRE_CHECK_ERROR_PYTHON();
   testing::TempDir dir;
   const std::string bear = (data / "olat/diligent-bear-crop8").string();
-  auto result = testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
-                                    "' --clusters 16 --terms 3 --residual 4 --iterations 2 "
-                                    "--report '" +
-                                    (dir / "b.json").string() + "'");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  result = testing::run_relume("decompress '" + (dir / "b.relume").string() + "' -o '" +
-                               (dir / "decompressed").string() + "'");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report =
+      compress_and_decompress(bear, "--clusters 16 --terms 3 --residual 4 --iterations 2",
+                              dir.path(), dir / "decompressed");
   const IndependentCheck check = check_error(bear, dir / "decompressed");
 
-  const nlohmann::json report = read_json(dir / "b.json");
   const double reported = report["error_masked"].get<double>();
   EXPECT_GT(reported, 1e-4) << "a lossy setting, so the comparison means something";
   EXPECT_NEAR(check.error_masked, reported, 1e-4 * reported) << check.output;
@@ -245,15 +256,9 @@ TEST(CompressCommand, NumberedImagesWithoutAListingAreCheckedInTheSameOrder) {
     std::snprintf(padded, sizeof padded, "%03d.exr", i);
     std::filesystem::rename(field / padded, field / (std::to_string(i) + ".exr"));
   }
-  auto result = testing::run_relume("compress '" + field.string() + "' -o '" +
-                                    (dir / "f.relume").string() +
-                                    "' --clusters 2 --terms 1 --residual 1 --report '" +
-                                    (dir / "f.json").string() + "'");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  result = testing::run_relume("decompress '" + (dir / "f.relume").string() + "' -o '" +
-                               (dir / "decompressed").string() + "'");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  const double reported = read_json(dir / "f.json")["error_masked"].get<double>();
+  const double reported = compress_and_decompress(field, "--clusters 2 --terms 1 --residual 1",
+                                                  dir.path(), dir / "decompressed")["error_masked"]
+                              .get<double>();
   EXPECT_GT(reported, 1e-4) << "one term for two-term clusters: a lossy setting";
   EXPECT_NEAR(check_error(field, dir / "decompressed").error_masked, reported, 1e-4 * reported);
 }
@@ -266,10 +271,10 @@ TEST(CompressCommand, OpenClAssignmentIsTheDefaultAndAgreesWithTheCpuPath) {
   const std::string bear = (data / "olat/diligent-bear-crop8").string();
   std::map<std::string, nlohmann::json> reports;
   for (const std::string assign : {"", "--assign cpu"}) {
-    const auto result = testing::run_relume(
-        "compress '" + bear + "' -o '" + (dir / "b.relume").string() +
-        "' --clusters 16 --terms 3 --residual 4 --iterations 2 --threads 2 " + assign +
-        " --report '" + (dir / "b.json").string() + "'");
+    const auto result =
+        testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
+                            "' --clusters 16 --terms 3 --residual 4 --iterations 2 --threads 2 " +
+                            assign + " --report '" + (dir / "b.json").string() + "'");
     ASSERT_EQ(result.exit_code, 0) << result.output;
     reports[assign] = read_json(dir / "b.json");
   }

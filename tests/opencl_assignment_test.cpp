@@ -1,11 +1,12 @@
 // The OpenCL assignment kernel (kernels/assign.cl) against the CPU reference on fresh random
 // inputs: the same clusters are chosen wherever the choice is not a near tie, and the objectives
 // and weights agree to float precision.
+#include "opencl_assignment.hpp"
+
 #include <gtest/gtest.h>
 
 #include "cluster_assignment.hpp"
 #include "error.hpp"
-#include "opencl_assignment.hpp"
 #include "random_assignment_problem.hpp"
 
 namespace relume {

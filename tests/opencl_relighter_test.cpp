@@ -252,9 +252,14 @@ TEST(OpenClRelighter, EveryRowVectorWidthSliceAndHeadGivesTheSameImage) {
   struct Layout {
     int row_vector, slice, head;
   };
-  for (const Layout layout : std::vector<Layout>{
-           {1, 32, 0}, {4, 16, 0}, {8, 8, 0}, {16, 4096, 0}, {1, 4096, 0}, {16, 4096, 3},
-           {16, 64, 1}, {4, 4096, 6}}) {
+  for (const Layout layout : std::vector<Layout>{{1, 32, 0},
+                                                 {4, 16, 0},
+                                                 {8, 8, 0},
+                                                 {16, 4096, 0},
+                                                 {1, 4096, 0},
+                                                 {16, 4096, 3},
+                                                 {16, 64, 1},
+                                                 {4, 4096, 6}}) {
     OpenClRelighterOptions options;
     options.row_vector = layout.row_vector;
     options.slice_rows = layout.slice;
@@ -408,8 +413,9 @@ TEST(OpenClRelighter, RefusesBadInput) {
   EXPECT_THROW(OpenClRelighter(pocl(), field, options), Error);
   options.row_vector = 0;
   options.head_entries = -2;
-  EXPECT_NE(testing::error_message([&] { OpenClRelighter(pocl(), field, options); })
-                .find("head entries -2"),
+  EXPECT_NE(testing::error_message([&] {
+              OpenClRelighter(pocl(), field, options);
+            }).find("head entries -2"),
             std::string::npos);
   field.residual.light_index[0] = std::uint32_t(field.lights);
   EXPECT_THROW(OpenClRelighter(pocl(), field), Error);
