@@ -197,6 +197,9 @@ void run_compress(CompressArguments& arguments) {
     opencl = make_assigner(arguments.device, options.clustering);
   else if (arguments.assign != "cpu")
     throw Error("--assign must be 'cpu' or 'opencl', got '" + arguments.assign + "'");
+  if (!options.clustering.quiet)
+    std::fprintf(stderr, "compress: reassignment fits on %s\n",
+                 opencl ? opencl->device_label().c_str() : "the CPU (C++ path)");
 
   const bool several = arguments.inputs.size() > 1;
   if (several) fs::create_directories(arguments.output);
