@@ -157,7 +157,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
         {"error_masked_stored", report["error_masked"]},
         {"error_masked_float32",
          relative_error(field, compressed, true, all_residual_entries, run.threads).mean},
-        {"quantization_error", quantization_error(compressed, container).mean}};
+        {"quantization_error",
+         relative_error(compressed, stored, all_residual_entries, run.threads).mean}};
   std::printf("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
               "%d clusters, %.1f s\n",
               input.c_str(), output.c_str(),
