@@ -179,8 +179,7 @@ std::vector<BenchRecord> bench_reference(const CompressedField& field,
   const auto residual_bytes = [&](int cap) {
     std::uint64_t used_entries = 0;
     for (std::size_t s = 0; s < rows; ++s)
-      used_entries += std::min<std::uint64_t>(
-          field.residual.row_offsets[s + 1] - field.residual.row_offsets[s], std::uint64_t(cap));
+      used_entries += std::min<std::uint64_t>(field.residual.length(s), std::uint64_t(cap));
     return used_entries * 8 + rows * (4 + 4 + 4) + light_bytes;
   };
 

@@ -17,13 +17,6 @@ struct InfoOptions {
   bool json = false;
 };
 
-std::uint32_t longest_residual_row(const ResidualRows& residual) {
-  std::uint32_t longest = 0;
-  for (std::size_t r = 0; r < residual.rows(); ++r)
-    longest = std::max(longest, residual.row_offsets[r + 1] - residual.row_offsets[r]);
-  return longest;
-}
-
 nlohmann::ordered_json describe(const std::string& input) {
   ContainerOptions stored;
   const CompressedField field = read_container(input, &stored);
@@ -42,7 +35,7 @@ nlohmann::ordered_json describe(const std::string& input) {
       {"terms", field.terms},
       {"transform", field.transform == BasisTransform::haar ? "haar" : "identity"},
       {"residual_nonzeros", field.residual.nonzeros()},
-      {"residual_longest_row", longest_residual_row(field.residual)},
+      {"residual_longest_row", field.residual.longest_row()},
       {"weights_precision", to_string(stored.weights)},
       {"residual_precision", to_string(stored.residual)},
       {"light_index_bits", index_width_bits(stored.light_index)},

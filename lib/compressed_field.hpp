@@ -5,6 +5,7 @@
 // what the relighting kernels read.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +26,12 @@ struct ResidualRows {
 
   std::size_t rows() const { return row_offsets.empty() ? 0 : row_offsets.size() - 1; }
   std::size_t nonzeros() const { return values.size(); }
+  std::uint32_t length(std::size_t row) const { return row_offsets[row + 1] - row_offsets[row]; }
+  std::uint32_t longest_row() const {
+    std::uint32_t longest = 0;
+    for (std::size_t r = 0; r < rows(); ++r) longest = std::max(longest, length(r));
+    return longest;
+  }
 };
 
 struct CompressedField {

@@ -113,11 +113,8 @@ struct StoredWidths {
 };
 
 StoredWidths stored_widths(const CompressedField& field, IndexWidth light_index) {
-  std::uint32_t longest = 0;
-  for (std::size_t r = 0; r < field.residual.rows(); ++r)
-    longest = std::max(longest, field.residual.row_offsets[r + 1] - field.residual.row_offsets[r]);
   return {bytes_for_max_value(field.clusters > 0 ? field.clusters - 1 : 0),
-          bytes_for_max_value(longest), index_width_bits(light_index) / 8};
+          bytes_for_max_value(field.residual.longest_row()), index_width_bits(light_index) / 8};
 }
 
 struct EncodedContainer {
@@ -185,8 +182,7 @@ EncodedContainer encode_container(const CompressedField& field, const ContainerO
   const ResidualRows& e = field.residual;
   ByteWriter lengths, indices;
   for (std::size_t r = 0; r < rows; ++r)
-    lengths.unsigned_of_width(e.row_offsets[r + 1] - e.row_offsets[r],
-                              widths.residual_length_bytes);
+    lengths.unsigned_of_width(e.length(r), widths.residual_length_bytes);
   for (std::uint32_t light : e.light_index)
     indices.unsigned_of_width(light, widths.light_index_bytes);
   sections[7] = lengths.take();

@@ -111,9 +111,7 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
                                  : cpu                   ? 1024
                                                          : 64);
   row_vector_ = options.row_vector ? options.row_vector : cpu ? 16 : 1;
-  for (std::size_t s = 0; s < rows_; ++s)
-    widest_row_ = std::max(widest_row_,
-                           int(field.residual.row_offsets[s + 1] - field.residual.row_offsets[s]));
+  widest_row_ = int(field.residual.longest_row());
   // CPUs keep the first head_entries_ entries of each row in tall slices and the rest, if any row
   // is longer, in groups of one row vector (relight_layout.hpp); other devices keep every entry
   // in 32-row slices.

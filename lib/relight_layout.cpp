@@ -8,10 +8,6 @@
 namespace relume {
 namespace {
 
-std::uint32_t row_length(const CompressedField& field, std::size_t row) {
-  return field.residual.row_offsets[row + 1] - field.residual.row_offsets[row];
-}
-
 // The groups of one region over entries [first_entry, last_entry) of every row, its slots
 // starting at `base`.
 ResidualRegion plan_region(const CompressedField& field, int group_rows, std::uint32_t first_entry,
@@ -28,7 +24,7 @@ ResidualRegion plan_region(const CompressedField& field, int group_rows, std::ui
     const std::size_t end_row = std::min(rows, (g + 1) * group_rows);
     std::uint32_t width = 0;
     for (std::size_t s = g * group_rows; s < end_row; ++s) {
-      const std::uint32_t length = std::min(row_length(field, s), last_entry);
+      const std::uint32_t length = std::min(field.residual.length(s), last_entry);
       width = std::max(width, length > first_entry ? length - first_entry : 0);
     }
     region.width[g] = width;
@@ -49,7 +45,7 @@ void fill_region(const CompressedField& field, const ResidualRegion& region,
   for (std::size_t s = 0; s < field.stored_rows(); ++s) {
     const std::size_t g = s / group_rows;
     const std::uint32_t begin = residual.row_offsets[s];
-    const std::uint32_t length = row_length(field, s);
+    const std::uint32_t length = field.residual.length(s);
     for (std::uint32_t e = first_entry; e < std::min(length, first_entry + region.width[g]); ++e) {
       const std::size_t slot =
           region.offsets[g] + std::size_t(e - first_entry) * group_rows + s % group_rows;
@@ -113,7 +109,7 @@ RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutSha
 int tall_slice_rows(const CompressedField& field, int row_vector, std::uint32_t head_entries) {
   const std::size_t rows = field.stored_rows();
   std::uint64_t stored = 0;
-  for (std::size_t s = 0; s < rows; ++s) stored += std::min(row_length(field, s), head_entries);
+  for (std::size_t s = 0; s < rows; ++s) stored += std::min(field.residual.length(s), head_entries);
   for (int slice = 4096; slice > row_vector; slice /= 2) {
     const ResidualRegion head = plan_region(field, slice, 0, head_entries, 0);
     if (std::uint64_t(head.offsets.back()) * 8 <= stored * 9) return slice;

@@ -279,7 +279,9 @@ TEST(OpenClRelighter, EveryRowVectorWidthSliceAndHeadGivesTheSameImage) {
                   float_tolerance)
             << name << ", cap " << cap << ", frame " << b;
     }
-    if (layout.head > 0) EXPECT_EQ(relighter.head_entries(), std::uint32_t(layout.head)) << name;
+    if (layout.head > 0) {
+      EXPECT_EQ(relighter.head_entries(), std::uint32_t(layout.head)) << name;
+    }
   }
 }
 
@@ -377,7 +379,9 @@ TEST(OpenClRelighter, CpuSlicesAreTallUnlessThePaddingGrows) {
   EXPECT_GE(slice, 16);
   OpenClRelighter varied_relighter(pocl(), varied);
   EXPECT_EQ(varied_relighter.slice_rows(), slice);
-  if (slice > 16) EXPECT_LE(varied_relighter.residual_padding(), 1.0 / 9);
+  if (slice > 16) {
+    EXPECT_LE(varied_relighter.residual_padding(), 1.0 / 9);
+  }
   // An explicit slice height is kept.
   OpenClRelighterOptions options;
   options.slice_rows = 64;
