@@ -80,16 +80,21 @@ inline lights_t load_tail(__global const float* pointer) {
   return load_lights(0, lanes);
 }
 
-// One vector of lights of a pass (see fit_pass): adds |e| to l1 and d f_j f_l, d f_j x to the
-// normal equations.
-inline void pass_step(const lights_t* f, const lights_t x, const float* w, const int start,
+// What a pass over the lights does (see fit_pass).
+#define PASS_START 0     // sum the least-squares normal equations (d = 1)
+#define PASS_REWEIGHT 1  // score w and sum the normal equations with d = 1 / max(|e|, EPSILON)
+#define PASS_SCORE 2     // score w only
+
+// One vector of lights of a pass: adds |e| to l1 and d f_j f_l, d f_j x to the normal equations.
+inline void pass_step(const lights_t* f, const lights_t x, const float* w, const int mode,
                       lights_t* l1, lights_t* g, lights_t* b) {
   lights_t d = (lights_t)(1.0f);
-  if (!start) {
+  if (mode != PASS_START) {
     lights_t e = x;
     for (int j = 0; j < TERMS; ++j) e -= w[j] * f[j];
     const lights_t magnitude = fabs(e);
     *l1 += magnitude;
+    if (mode == PASS_SCORE) return;
     d = 1.0f / fmax(magnitude, EPSILON);
   }
   int pair = 0;
@@ -100,10 +105,10 @@ inline void pass_step(const lights_t* f, const lights_t x, const float* w, const
   }
 }
 
-// One IRLS step over all lights. With `start`, sums the least-squares normal equations (d = 1)
-// and returns 0; otherwise returns the L1 residual of the weights w and sums the normal
-// equations with d_i = 1 / max(|e_i|, EPSILON). gram: TERMS x TERMS, full; rhs: TERMS.
-float fit_pass(__global const float* f, __global const float* x, const float* w, const int start,
+// One pass over all lights in `mode` (PASS_*): returns the L1 residual of the weights w (0 for
+// PASS_START) and, unless scoring only, leaves the normal equations in gram (TERMS x TERMS, full)
+// and rhs (TERMS).
+float fit_pass(__global const float* f, __global const float* x, const float* w, const int mode,
                REAL* gram, REAL* rhs) {
   lights_t l1 = (lights_t)(0.0f), g[PAIRS], b[TERMS];
   for (int i = 0; i < PAIRS; ++i) g[i] = (lights_t)(0.0f);
@@ -111,12 +116,13 @@ float fit_pass(__global const float* f, __global const float* x, const float* w,
   lights_t fv[TERMS];
   for (int v = 0; v < FULL_VECTORS; ++v) {
     for (int j = 0; j < TERMS; ++j) fv[j] = load_lights(v, f + j * LIGHTS);
-    pass_step(fv, load_lights(v, x), w, start, &l1, g, b);
+    pass_step(fv, load_lights(v, x), w, mode, &l1, g, b);
   }
 #if TAIL_LIGHTS > 0
   for (int j = 0; j < TERMS; ++j) fv[j] = load_tail(f + j * LIGHTS);
-  pass_step(fv, load_tail(x), w, start, &l1, g, b);
+  pass_step(fv, load_tail(x), w, mode, &l1, g, b);
 #endif
+  if (mode == PASS_SCORE) return lane_sum(l1);
   int pair = 0;
   for (int j = 0; j < TERMS; ++j) {
     rhs[j] = lane_sum(b[j]);
@@ -164,13 +170,14 @@ void solve_small_spd(REAL* g, REAL* b) {
 float fit_row(__global const float* f, __global const float* x, float* fitted) {
   REAL gram[TERMS * TERMS], rhs[TERMS];
   float current[TERMS];
-  fit_pass(f, x, current, 1, gram, rhs);
+  fit_pass(f, x, current, PASS_START, gram, rhs);
   float best = INFINITY;
   for (int step = 0; step <= ITERATIONS; ++step) {
     solve_small_spd(gram, rhs);
     for (int j = 0; j < TERMS; ++j) current[j] = (float)rhs[j];
     // Scores `current` and, unless it is the last solve, sets up the next one.
-    const float objective = fit_pass(f, x, current, 0, gram, rhs);
+    const float objective =
+        fit_pass(f, x, current, step < ITERATIONS ? PASS_REWEIGHT : PASS_SCORE, gram, rhs);
     if (objective < best) {
       best = objective;
       for (int j = 0; j < TERMS; ++j) fitted[j] = current[j];
