@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "command_registry.hpp"
-#include "image_difference.hpp"
-#include "image_io.hpp"
+#include "image/image_difference.hpp"
+#include "image/image_io.hpp"
 
 namespace relume {
 namespace {

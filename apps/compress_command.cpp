@@ -1,5 +1,5 @@
 // `relume compress`: clustered sparse residual factorization of one or more reflectance fields
-// into .relume containers, with a JSON report per run (lib/compression_report.hpp), checkpoints
+// into .relume containers, with a JSON report per run (lib/compress/compression_report.hpp), checkpoints
 // after every clustering iteration (--resume continues an interrupted run) and, with several
 // inputs, one container per input in the output folder: a failing input is reported and the
 // others still run.
@@ -10,20 +10,20 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
-#include "checkpoint.hpp"
-#include "clustered_factorization.hpp"
+#include "core/atomic_file.hpp"
+#include "compress/checkpoint.hpp"
+#include "compress/clustered_factorization.hpp"
 #include "command_registry.hpp"
-#include "compression_report.hpp"
-#include "compression_target.hpp"
-#include "container.hpp"
-#include "elapsed_time.hpp"
-#include "error.hpp"
-#include "field_io.hpp"
-#include "opencl_assignment.hpp"
-#include "parallel.hpp"
-#include "progress.hpp"
-#include "reconstruct_field.hpp"
+#include "compress/compression_report.hpp"
+#include "compress/compression_target.hpp"
+#include "container/container.hpp"
+#include "core/elapsed_time.hpp"
+#include "core/error.hpp"
+#include "field/field_io.hpp"
+#include "compress/opencl_assignment.hpp"
+#include "core/parallel.hpp"
+#include "core/progress.hpp"
+#include "model/reconstruct_field.hpp"
 
 namespace relume {
 namespace {

@@ -1,9 +1,9 @@
 // Implementation of the command-side renderer over the OpenCL and reference relighters.
 #include "compressed_renderer.hpp"
 
-#include "compressed_relight_reference.hpp"
-#include "opencl_relighter.hpp"
-#include "residual_selection.hpp"
+#include "relight/compressed_relight_reference.hpp"
+#include "relight/opencl_relighter.hpp"
+#include "compress/residual_selection.hpp"
 
 namespace relume {
 

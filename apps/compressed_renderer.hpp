@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "compressed_field.hpp"
-#include "image.hpp"
+#include "model/compressed_field.hpp"
+#include "image/image.hpp"
 
 namespace relume {
 

@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "command_registry.hpp"
-#include "container.hpp"
-#include "field_io.hpp"
-#include "reconstruct_field.hpp"
+#include "container/container.hpp"
+#include "field/field_io.hpp"
+#include "model/reconstruct_field.hpp"
 
 namespace relume {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 
 #include "command_registry.hpp"
-#include "opencl_runtime.hpp"
+#include "opencl/runtime.hpp"
 
 namespace relume {
 namespace {

@@ -6,10 +6,10 @@
 #include <optional>
 
 #include "command_registry.hpp"
-#include "error.hpp"
-#include "l1_factorization.hpp"
-#include "npy.hpp"
-#include "progress.hpp"
+#include "core/error.hpp"
+#include "l1/factorization.hpp"
+#include "field/npy.hpp"
+#include "core/progress.hpp"
 
 namespace relume {
 namespace {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.hpp"
-#include "container.hpp"
+#include "container/container.hpp"
 
 namespace relume {
 namespace {

@@ -3,10 +3,10 @@
 
 #include <cstdio>
 
-#include "environment_map.hpp"
-#include "error.hpp"
-#include "light_file.hpp"
-#include "light_vector.hpp"
+#include "lighting/environment_map.hpp"
+#include "core/error.hpp"
+#include "field/light_file.hpp"
+#include "lighting/light_vector.hpp"
 
 namespace relume {
 

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "reflectance_field.hpp"
+#include "field/reflectance_field.hpp"
 
 namespace relume {
 

@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "command_registry.hpp"
-#include "environment_map.hpp"
-#include "light_file.hpp"
-#include "light_vector.hpp"
+#include "lighting/environment_map.hpp"
+#include "field/light_file.hpp"
+#include "lighting/light_vector.hpp"
 
 namespace relume {
 namespace {

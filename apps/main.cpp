@@ -5,7 +5,7 @@
 #include <exception>
 
 #include "command_registry.hpp"
-#include "error.hpp"
+#include "core/error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{

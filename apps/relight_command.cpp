@@ -6,10 +6,10 @@
 
 #include "command_registry.hpp"
 #include "compressed_renderer.hpp"
-#include "container.hpp"
-#include "field_io.hpp"
-#include "field_relight.hpp"
-#include "image_io.hpp"
+#include "container/container.hpp"
+#include "field/field_io.hpp"
+#include "relight/field_relight.hpp"
+#include "image/image_io.hpp"
 #include "light_source_options.hpp"
 
 namespace relume {

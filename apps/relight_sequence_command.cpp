@@ -10,17 +10,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "command_registry.hpp"
-#include "compressed_relight_reference.hpp"
+#include "relight/compressed_relight_reference.hpp"
 #include "compressed_renderer.hpp"
-#include "container.hpp"
-#include "environment_map.hpp"
-#include "error.hpp"
-#include "image_difference.hpp"
-#include "image_io.hpp"
-#include "light_vector.hpp"
-#include "progress.hpp"
+#include "container/container.hpp"
+#include "lighting/environment_map.hpp"
+#include "core/error.hpp"
+#include "image/image_difference.hpp"
+#include "image/image_io.hpp"
+#include "lighting/light_vector.hpp"
+#include "core/progress.hpp"
 
 namespace relume {
 namespace {

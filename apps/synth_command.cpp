@@ -1,5 +1,5 @@
 // `relume synth`: renders a synthetic OLAT set with exact ground truth (spheres on a ground disc,
-// see lib/synthetic_scene.hpp) and writes it as a field folder that every other command reads.
+// see lib/synth/synthetic_scene.hpp) and writes it as a field folder that every other command reads.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -7,10 +7,10 @@
 #include <string>
 
 #include "command_registry.hpp"
-#include "error.hpp"
-#include "field_io.hpp"
-#include "progress.hpp"
-#include "synthetic_scene.hpp"
+#include "core/error.hpp"
+#include "field/field_io.hpp"
+#include "core/progress.hpp"
+#include "synth/synthetic_scene.hpp"
 
 namespace relume {
 namespace {

@@ -1,5 +1,5 @@
 // Reassignment of reflectance functions to clusters (paper Eq. 14), the OpenCL twin of
-// lib/cluster_assignment.cpp + lib/cluster_function_fit.cpp: one work-item per row fits the row's
+// lib/compress/cluster_assignment.cpp + lib/compress/cluster_function_fit.cpp: one work-item per row fits the row's
 // TERMS weights against each of its candidate clusters by IRLS (least-squares start, then
 // ITERATIONS reweighted solves with weights 1 / max(|e|, EPSILON)), scores each fit by its exact
 // L1 residual and keeps the best and the runner-up.

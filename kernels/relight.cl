@@ -1,4 +1,4 @@
-// Relighting kernels for a compressed reflectance field (lib/opencl_relighter.cpp uploads the data
+// Relighting kernels for a compressed reflectance field (lib/relight/opencl_relighter.cpp uploads the data
 // and sets the defines below). BATCH light vectors are relit in one pass over W and E.
 //
 //   cluster_products: v[k][j][c][b] = sum_i F^k[j][i] * I[i][c][b], every cluster in one launch.
@@ -11,7 +11,7 @@
 //     One work-item per stored row s (function p, channel c = p % CHANNELS, cluster k). Rows are
 //     grouped in slices of SLICE_ROWS; inside a slice, W is stored slot-major (all rows' term j,
 //     then term j+1), so consecutive work-items read consecutive addresses. The residual
-//     (lib/relight_layout.hpp) has a head, entries [0, HEAD_ENTRIES) in the slices, and with
+//     (lib/relight/relight_layout.hpp) has a head, entries [0, HEAD_ENTRIES) in the slices, and with
 //     TAIL_ROWS > 0 a tail, the later entries in groups of TAIL_ROWS rows; each group is stored
 //     slot-major too (all rows' entry e, then e+1) and padded with zero entries to the width of
 //     its longest row: reading a padded entry adds 0 * I[0]. Per-row arrays are padded to whole

@@ -1,0 +1,34 @@
+// Fitting cluster bases F^k: the least-squares subspace of a set of rows (used by seeding and the
+// L2 rounds), an orthonormal basis of any F^k (for the cheap L2 projection error that preselects
+// candidate clusters), and the F-step of the L1 factorization (paper section 3.3: every light's
+// column of F^k fitted to the cluster's rows with W fixed, by IRLS warm-started at the current F).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "compress/cluster_function_fit.hpp"
+#include "compress/cluster_model.hpp"
+
+namespace relume {
+
+// The `terms` leading right singular vectors of the rows `members` of `rows` (t x m, row-major,
+// orthonormal rows), from the eigenvectors of their Gram matrix. With fewer members than terms
+// the missing directions are filled with other orthonormal vectors.
+std::vector<float> least_squares_subspace(const WorkingRows& rows,
+                                          const std::vector<std::uint32_t>& members, int terms);
+
+// An m x t matrix whose columns are an orthonormal basis of the span of F's rows (zero columns
+// where F is rank-deficient).
+Eigen::MatrixXf orthonormal_columns(const float* basis, int terms, int lights);
+
+// F-step for one cluster: for every light i, min_f sum_p |rows[p,i] - W[p,:] f| over the members,
+// by `settings.iterations` IRLS steps from the current basis (updated in place). Each basis row
+// is then scaled to unit L2 norm (W is refitted afterwards by the caller). Returns the L1
+// objective sum_p ||rows[p,:] - W[p,:] F||_1 with the new F.
+double fit_cluster_basis_l1(const WorkingRows& rows, const std::vector<std::uint32_t>& members,
+                            const RowMatrixF& weights, const IrlsSettings& settings, int terms,
+                            float* basis);
+
+}  // namespace relume

@@ -1,0 +1,50 @@
+// The working state of clustered factorization: the rows being clustered (each reflectance
+// function scaled to unit L2 norm, in the chosen basis transform), one cluster per row, the
+// cluster bases F^k and each row's weights. Scaling rows to unit norm makes the clustering
+// invariant to brightness and matches the per-function relative error of paper Eq. 16; the scale
+// goes back into W and E when the compressed field is built.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "field/reflectance_field.hpp"
+
+namespace relume {
+
+struct WorkingRows {
+  RowMatrixF values;         // rows x lights, every row of unit L2 norm
+  std::vector<float> norms;  // each row's original L2 norm (> 0)
+
+  int lights() const { return static_cast<int>(values.cols()); }
+  std::size_t rows() const { return static_cast<std::size_t>(values.rows()); }
+  const float* row(std::size_t r) const { return values.data() + r * values.cols(); }
+};
+
+struct ClusterModel {
+  int terms = 0;
+  int lights = 0;
+  int clusters = 0;
+  std::vector<float> bases;              // clusters x terms x lights (F^k row j at k*t + j)
+  std::vector<std::int32_t> assignment;  // cluster of every working row
+  RowMatrixF weights;                    // rows x terms, for the assigned cluster
+
+  float* basis(int k) { return bases.data() + std::size_t(k) * terms * lights; }
+  const float* basis(int k) const { return bases.data() + std::size_t(k) * terms * lights; }
+  // Members of every cluster, in ascending row order.
+  std::vector<std::vector<std::uint32_t>> members() const;
+};
+
+// The rows a compressed field stores: functions whose pixel is inside the mask (every pixel when
+// the mask is empty) and that are not all zero, in ascending function order, each transformed to
+// `transform`'s basis and scaled to unit norm.
+struct PreparedRows {
+  WorkingRows rows;
+  std::vector<std::uint32_t> functions;  // working row -> function index p
+};
+
+// Throws Error naming the function and light of a NaN or Inf value.
+PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, unsigned threads);
+
+}  // namespace relume

@@ -1,0 +1,28 @@
+// The start of clustered factorization. A random assignment (the paper's start) stalls in impure
+// clusters, so clusters are seeded like k-means++ for subspaces (GUIDE section 2): on a random
+// sample of rows, each new seed is drawn with probability proportional to its squared distance
+// from the subspaces chosen so far, and its subspace is grown from the rows most similar to it
+// (the 2t largest |cosines|, then the rows closest to their least-squares subspace). A few cheap
+// least-squares rounds over all rows (assign to the nearest subspace, refit each subspace) follow.
+#pragma once
+
+#include <cstdint>
+
+#include "compress/cluster_model.hpp"
+
+namespace relume {
+
+struct SeedingOptions {
+  int clusters = 64;
+  int terms = 4;
+  int sample_rows = 20000;  // rows the seeds are chosen from
+  int l2_rounds = 4;        // least-squares k-subspace rounds over all rows
+  std::uint64_t seed = 1;
+  unsigned threads = 0;
+};
+
+// Bases (orthonormal rows) and the least-squares assignment; weights are left empty. Fewer
+// clusters than asked are returned only when there are fewer rows than clusters.
+ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& options);
+
+}  // namespace relume

@@ -1,0 +1,176 @@
+// Implementation of clustered sparse residual factorization of a field
+// (see clustered_factorization.hpp).
+#include "compress/clustered_factorization.hpp"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "core/elapsed_time.hpp"
+#include "core/error.hpp"
+#include "model/haar_transform.hpp"
+#include "core/parallel.hpp"
+
+namespace relume {
+namespace {
+
+void validate_options(const ReflectanceField& field, const CompressionOptions& options) {
+  const ClusteringOptions& clustering = options.clustering;
+  if (clustering.terms < 1 || clustering.terms > max_cluster_terms)
+    throw Error("terms per cluster must be in [1, " + std::to_string(max_cluster_terms) +
+                "], got " + std::to_string(clustering.terms));
+  if (clustering.terms >= field.lights())
+    throw Error("terms per cluster (" + std::to_string(clustering.terms) +
+                ") must be fewer than the lights (" + std::to_string(field.lights()) + ")");
+  if (clustering.clusters < 1)
+    throw Error("clusters must be >= 1, got " + std::to_string(clustering.clusters));
+  if (clustering.candidates < 1)
+    throw Error("candidate clusters per function must be >= 1, got " +
+                std::to_string(clustering.candidates));
+  if (clustering.max_iterations < 0 || options.refine_iterations < 0)
+    throw Error("iteration counts must be >= 0");
+  if (options.multires_levels < 0 || options.multires_levels > 8)
+    throw Error("multi-resolution levels must be in [0, 8], got " +
+                std::to_string(options.multires_levels));
+  if (!(options.residual_threshold >= 0) || !std::isfinite(options.residual_threshold))
+    throw Error("residual threshold must be a finite value >= 0, got " +
+                std::to_string(options.residual_threshold));
+  validate_size_limits(clustering.sizes, clustering.terms);
+}
+
+}  // namespace
+
+CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
+                                       const ClusterModel& model, BasisTransform transform,
+                                       int residual_entries, float residual_threshold,
+                                       const std::vector<int>& entries_per_row,
+                                       CompressionStats& stats, unsigned threads) {
+  const int lights = field.lights(), terms = model.terms;
+  const std::size_t rows = prepared.functions.size();
+  CompressedField out;
+  out.width = field.width;
+  out.height = field.height;
+  out.channels = field.channels;
+  out.lights = lights;
+  out.terms = terms;
+  out.clusters = model.clusters;
+  out.transform = transform;
+  out.mask = field.mask.empty() ? std::vector<std::uint8_t>(field.pixels(), 1) : field.mask;
+  for (auto& inside : out.mask) inside = inside != 0;
+  out.directions = field.directions;
+  out.intensities = field.intensities;
+  out.stored_function = prepared.functions;
+  out.cluster.assign(model.assignment.begin(), model.assignment.end());
+  out.bases = model.bases;
+  out.weights.resize(static_cast<Eigen::Index>(rows), terms);
+
+  // Residual rows are built in blocks in parallel, then concatenated in order.
+  constexpr std::size_t block = 2048;
+  const std::size_t blocks = (rows + block - 1) / block;
+  std::vector<ResidualRows> parts(blocks);
+  constexpr std::size_t levels = std::size(sparseness_thresholds);
+  std::vector<std::array<std::size_t, levels>> sparse_counts(blocks);
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned) {
+    std::vector<float> row(lights);
+    std::vector<int> scratch;
+    ResidualRows& part = parts[b];
+    part.row_offsets.push_back(0);
+    sparse_counts[b].fill(0);
+    for (std::size_t r = b * block; r < std::min(rows, (b + 1) * block); ++r) {
+      const auto original = field.values.row(prepared.functions[r]);
+      std::copy(original.data(), original.data() + lights, row.begin());
+      if (transform == BasisTransform::haar) haar_forward(row.data(), lights, 1);
+      const float norm = prepared.rows.norms[r];
+      float* weights = out.weights.row(static_cast<Eigen::Index>(r)).data();
+      for (int j = 0; j < terms; ++j) weights[j] = model.weights(static_cast<Eigen::Index>(r), j) * norm;
+      const float* basis = model.basis(model.assignment[r]);
+      for (int i = 0; i < lights; ++i) {
+        double value = row[i];
+        for (int j = 0; j < terms; ++j) value -= double(weights[j]) * basis[std::size_t(j) * lights + i];
+        row[i] = static_cast<float>(value);
+        for (std::size_t level = 0; level < levels; ++level)
+          sparse_counts[b][level] += std::fabs(value) <= sparseness_thresholds[level] * norm;
+      }
+      const int kept = entries_per_row.empty() ? residual_entries : entries_per_row[r];
+      append_residual_row(row.data(), lights, kept, residual_threshold, part, scratch);
+    }
+  });
+  out.residual.row_offsets.reserve(rows + 1);
+  out.residual.row_offsets.push_back(0);
+  for (const ResidualRows& part : parts) {
+    const std::uint32_t base = out.residual.row_offsets.back();
+    for (std::size_t r = 1; r < part.row_offsets.size(); ++r)
+      out.residual.row_offsets.push_back(base + part.row_offsets[r]);
+    out.residual.light_index.insert(out.residual.light_index.end(), part.light_index.begin(),
+                                    part.light_index.end());
+    out.residual.values.insert(out.residual.values.end(), part.values.begin(), part.values.end());
+  }
+  stats.residual_nonzeros = out.residual.nonzeros();
+  stats.sparseness.assign(levels, 0.0);
+  for (std::size_t level = 0; level < levels; ++level) {
+    std::size_t count = 0;
+    for (const auto& counts : sparse_counts) count += counts[level];
+    stats.sparseness[level] = rows == 0 ? 0.0 : double(count) / (double(rows) * lights);
+  }
+  return out;
+}
+
+CompressedField compress_field(const ReflectanceField& field, const CompressionOptions& options,
+                               CompressionStats& stats, const IterationHook& hook,
+                               const ClusteringResume* resume) {
+  validate_options(field, options);
+  const ClusteringOptions& clustering = options.clustering;
+  const bool haar = options.transform == BasisTransform::haar;
+  auto start = Clock::now();
+  const PreparedRows prepared = prepare_rows(field, haar, clustering.threads);
+  stats.functions = field.functions();
+  stats.stored_rows = prepared.functions.size();
+  if (!field.mask.empty()) {
+    for (const auto inside : field.mask) stats.outside_mask += (inside == 0) * field.channels;
+  }
+  stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows);
+  stats.clusters_asked = clustering.clusters;
+  stats.prepare_seconds = seconds_since(start);
+
+  start = Clock::now();
+  ClusterModel model;
+  if (prepared.functions.empty()) {
+    model.terms = clustering.terms;
+    model.lights = field.lights();
+  } else if (resume) {
+    model = resume->model;
+    if (model.terms != clustering.terms || model.lights != field.lights() ||
+        model.assignment.size() != prepared.functions.size())
+      throw Error("the checkpoint does not match this input and these settings (" +
+                  std::to_string(model.assignment.size()) + " rows, " +
+                  std::to_string(model.terms) + " terms, " + std::to_string(model.lights) +
+                  " lights; expected " + std::to_string(prepared.functions.size()) + ", " +
+                  std::to_string(clustering.terms) + ", " + std::to_string(field.lights()) + ")");
+    stats.clustering.iterations = resume->iterations;
+    int done = 0;
+    for (const auto& record : resume->iterations) done += record.iteration > 0;
+    const int cap = options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
+    iterate_clusters(prepared.rows, model, clustering, std::max(0, cap - done), stats.clustering,
+                     hook);
+  } else if (options.multires_levels > 0) {
+    stats.multires.emplace();
+    model = multires_start(field, prepared, options.multires_levels, haar, clustering,
+                           *stats.multires);
+    iterate_clusters(prepared.rows, model, clustering, options.refine_iterations,
+                     stats.clustering, hook);
+  } else {
+    model = cluster_rows(prepared.rows, clustering, stats.clustering, hook);
+  }
+  stats.clusters = model.clusters;
+  stats.clustering_seconds = seconds_since(start);
+
+  start = Clock::now();
+  stats.residual_entries = options.residual.entries_for(field.lights());
+  CompressedField out = build_compressed_field(field, prepared, model, options.transform,
+                                               stats.residual_entries, options.residual_threshold,
+                                               {}, stats, clustering.threads);
+  stats.residual_seconds = seconds_since(start);
+  return out;
+}
+
+}  // namespace relume

@@ -1,0 +1,70 @@
+// Clustered sparse residual factorization of a reflectance field (paper sections 3.3, 3.4, 5):
+//   R[p,:] ~ W[p,:] F^{c(p)} + E[p,:]
+// The functions a scene needs (inside the mask, not all zero; each colour channel its own
+// function) are optionally moved into the Haar basis (paper Eq. 3), scaled to unit norm, clustered
+// by L1 factorization (lib/compress/cluster_iterations.hpp, optionally multi-resolution), and their residual
+// is cut to the largest entries (lib/compress/residual_selection.hpp). The result is a CompressedField.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "compress/cluster_iterations.hpp"
+#include "model/compressed_field.hpp"
+#include "compress/multires_clustering.hpp"
+#include "field/reflectance_field.hpp"
+#include "compress/residual_selection.hpp"
+
+namespace relume {
+
+struct CompressionOptions {
+  ClusteringOptions clustering;
+  ResidualBudget residual;          // entries kept per function
+  float residual_threshold = 0.0f;  // entries with |value| <= this (field units) are dropped
+  BasisTransform transform = BasisTransform::identity;
+  int multires_levels = 0;     // cluster a field downsampled this many times first
+  int refine_iterations = 2;   // full-resolution iterations after multi-resolution clustering
+};
+
+// A clustering to continue from (a checkpoint): the model and the iterations already done.
+struct ClusteringResume {
+  ClusterModel model;
+  std::vector<IterationRecord> iterations;
+};
+
+// Residual thresholds of the sparseness measure (paper Fig. 4d), relative to each function's L2
+// norm (which the Haar transform preserves, so both bases are measured alike).
+inline constexpr double sparseness_thresholds[] = {1e-3, 1e-2, 5e-2, 1e-1};
+
+struct CompressionStats {
+  std::int64_t functions = 0;
+  std::int64_t outside_mask = 0;
+  std::int64_t all_zero = 0;
+  std::size_t stored_rows = 0;
+  int clusters_asked = 0;
+  int clusters = 0;
+  int residual_entries = 0;  // per function, from the budget
+  std::size_t residual_nonzeros = 0;
+  double prepare_seconds = 0, clustering_seconds = 0, residual_seconds = 0;
+  ClusteringTrace clustering;
+  std::optional<MultiresTrace> multires;
+  // Fraction of the full residual's entries with |e| <= threshold * ||R[p,:]||_2.
+  std::vector<double> sparseness;
+};
+
+// `hook` runs after every clustering iteration (for checkpoints); `resume` skips the seeding (and
+// the multi-resolution start) and continues its iterations up to the cap.
+CompressedField compress_field(const ReflectanceField& field, const CompressionOptions& options,
+                               CompressionStats& stats, const IterationHook& hook = {},
+                               const ClusteringResume* resume = nullptr);
+
+// Builds the CompressedField of `field` from a finished clustering of its prepared rows: W and E
+// scaled back to the field's units, E cut by `residual_entries` (all rows alike) or by
+// `entries_per_row` when not empty. Fills the residual and sparseness fields of `stats`.
+CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
+                                       const ClusterModel& model, BasisTransform transform,
+                                       int residual_entries, float residual_threshold,
+                                       const std::vector<int>& entries_per_row,
+                                       CompressionStats& stats, unsigned threads);
+
+}  // namespace relume

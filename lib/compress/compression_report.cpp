@@ -1,0 +1,149 @@
+// Implementation of the compression report (see compression_report.hpp).
+#include "compress/compression_report.hpp"
+
+#include <sys/resource.h>
+
+#include <chrono>
+
+#include "model/reconstruct_field.hpp"
+
+namespace relume {
+namespace {
+
+nlohmann::ordered_json error_json(const RelativeError& error) {
+  return {{"mean", error.mean},
+          {"functions_averaged", error.functions_averaged},
+          {"zero_energy_skipped", error.zero_energy_skipped}};
+}
+
+nlohmann::ordered_json clustering_json(const ClusteringTrace& trace) {
+  nlohmann::ordered_json iterations = nlohmann::ordered_json::array();
+  for (const IterationRecord& record : trace.iterations)
+    iterations.push_back({{"iteration", record.iteration},
+                          {"l1_objective", record.objective},
+                          {"changed", record.changed},
+                          {"clusters", record.clusters},
+                          {"merged", record.size_rules.merged},
+                          {"split", record.size_rules.split},
+                          {"seconds", record.seconds}});
+  nlohmann::ordered_json json = {{"iterations", iterations},
+                                 {"settled", trace.settled},
+                                 {"seconds",
+                                  {{"seeding", trace.seeding_seconds},
+                                   {"basis_fit", trace.basis_seconds},
+                                   {"candidates", trace.candidate_seconds},
+                                   {"assignment", trace.assignment_seconds},
+                                   {"size_rules", trace.size_rule_seconds},
+                                   {"exact_refit", trace.exact_refit_seconds}}}};
+  if (trace.exact_refit_objective_before)
+    json["exact_refit"] = {{"l1_objective_before", *trace.exact_refit_objective_before},
+                           {"l1_objective_after", *trace.exact_refit_objective_after}};
+  return json;
+}
+
+}  // namespace
+
+std::uint64_t peak_memory_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return std::uint64_t(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
+                                              const CompressionStats& stats,
+                                              const std::string& solver) {
+  const ClusteringOptions& clustering = options.clustering;
+  return {{"clusters_asked", clustering.clusters},
+          {"clusters", stats.clusters},
+          {"terms", clustering.terms},
+          {"residual", options.residual.describe()},
+          {"residual_entries", stats.residual_entries},
+          {"residual_threshold", options.residual_threshold},
+          {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
+          {"solver", solver},
+          {"multires_levels", options.multires_levels},
+          {"refine_iterations", options.refine_iterations},
+          {"max_iterations", clustering.max_iterations},
+          {"candidates", clustering.candidates},
+          {"min_cluster_size", clustering.sizes.minimum_for(clustering.terms)},
+          {"max_cluster_size", clustering.sizes.maximum},
+          {"seed", clustering.seed}};
+}
+
+nlohmann::ordered_json compression_report(const CompressionRun& run) {
+  const auto start = std::chrono::steady_clock::now();
+  const ReflectanceField& field = *run.field;
+  const CompressedField& compressed = *run.compressed;
+  const CompressionStats& stats = *run.stats;
+  const RelativeError all = relative_error(field, compressed, false, all_residual_entries, run.threads);
+  const RelativeError masked = relative_error(field, compressed, true, all_residual_entries, run.threads);
+  nlohmann::ordered_json by_prefix = nlohmann::ordered_json::object();
+  for (const int cap : {0, 1, 3, 5, 10, 20}) {
+    if (cap >= stats.residual_entries) break;
+    by_prefix[std::to_string(cap)] =
+        relative_error(field, compressed, true, cap, run.threads).mean;
+  }
+  by_prefix[std::to_string(stats.residual_entries)] = masked.mean;
+  const double error_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::uint64_t input_bytes = std::uint64_t(field.functions()) * field.lights() * 4;
+  nlohmann::ordered_json sections = nlohmann::ordered_json::object();
+  sections["preamble"] = run.layout.preamble_bytes;
+  for (const ContainerSection& section : run.layout.sections) sections[section.name] = section.bytes;
+  nlohmann::ordered_json sparseness = nlohmann::ordered_json::array();
+  for (std::size_t level = 0; level < stats.sparseness.size(); ++level)
+    sparseness.push_back({{"threshold_relative_to_norm", sparseness_thresholds[level]},
+                          {"fraction_at_or_below", stats.sparseness[level]}});
+
+  nlohmann::ordered_json phases = {{"prepare", stats.prepare_seconds},
+                                   {"clustering", stats.clustering_seconds},
+                                   {"residual", stats.residual_seconds},
+                                   {"error_measure", error_seconds}};
+  for (const auto& [name, seconds] : run.extra_seconds) phases[name] = seconds;
+
+  nlohmann::ordered_json report = {
+      {"input", run.input},
+      {"output", run.output},
+      {"seconds", run.total_seconds},
+      {"bytes", run.layout.file_bytes},
+      {"ratio", double(run.layout.file_bytes) / double(input_bytes)},
+      {"error_all", all.mean},
+      {"error_masked", masked.mean},
+      {"float32_input_bytes", input_bytes},
+      {"sections", sections},
+      {"error_masked_by_residual_entries", by_prefix},
+      {"error_all_detail", error_json(all)},
+      {"error_masked_detail", error_json(masked)},
+      {"field",
+       {{"width", field.width},
+        {"height", field.height},
+        {"channels", field.channels},
+        {"lights", field.lights()},
+        {"functions", stats.functions},
+        {"stored_rows", stats.stored_rows},
+        {"outside_mask", stats.outside_mask},
+        {"all_zero", stats.all_zero}}},
+      {"parameters", compression_parameters(*run.options, stats, run.solver)},
+      {"residual_nonzeros", stats.residual_nonzeros},
+      {"sparseness", sparseness},
+      {"phases_seconds", phases},
+      {"clustering", clustering_json(stats.clustering)},
+      {"threads", run.threads},
+      {"assignment_device", run.assignment_device},
+      {"peak_memory_bytes", peak_memory_bytes()}};
+  if (stats.multires) {
+    const MultiresTrace& multires = *stats.multires;
+    report["multires"] = {{"levels", multires.levels},
+                          {"low_width", multires.low_width},
+                          {"low_height", multires.low_height},
+                          {"low_rows", multires.low_rows},
+                          {"downsample_seconds", multires.downsample_seconds},
+                          {"low_clustering", clustering_json(multires.low)},
+                          {"full_assignment_seconds", multires.assignment_seconds},
+                          {"mean_pool_size", multires.mean_pool_size}};
+  }
+  return report;
+}
+
+}  // namespace relume

@@ -1,0 +1,40 @@
+// The JSON report of one `relume compress` run: time per phase, iterations with their L1
+// objective, bytes per container section and the ratio to the float32 input, the error of paper
+// Eq. 16 over all functions and over the masked ones (also at shorter residual prefixes),
+// sparseness of the residual at several thresholds (paper Fig. 4d) and peak memory.
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "compress/clustered_factorization.hpp"
+#include "container/container.hpp"
+
+namespace relume {
+
+struct CompressionRun {
+  std::string input, output;
+  const ReflectanceField* field = nullptr;
+  const CompressedField* compressed = nullptr;
+  const CompressionOptions* options = nullptr;
+  const CompressionStats* stats = nullptr;
+  ContainerLayout layout;
+  std::map<std::string, double> extra_seconds;  // phases outside compress_field (load, write)
+  double total_seconds = 0;
+  unsigned threads = 0;
+  std::string solver;
+  std::string assignment_device;  // "cpu" or the OpenCL device label
+};
+
+// The compression parameters recorded in the container header (a JSON object).
+nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
+                                              const CompressionStats& stats,
+                                              const std::string& solver);
+
+nlohmann::ordered_json compression_report(const CompressionRun& run);
+
+// Peak resident memory of this process so far, in bytes (getrusage).
+std::uint64_t peak_memory_bytes();
+
+}  // namespace relume

@@ -1,0 +1,35 @@
+// `relume compress --target-error E`: the settings that reach a relative error E (paper Eq. 16,
+// over the masked functions) with the fewest stored bytes. For each (terms, clusters) pair of a
+// small grid the field is factored once; then, since the error is a mean of per-function relative
+// errors and every residual entry costs the same bytes, the entries with the largest error
+// reduction e^2 / ||R[p,:]||^2 are kept across all functions until the mean error reaches E: each
+// function gets its own residual length (a prefix of its sorted row). The pair with the smallest
+// container wins.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "compress/clustered_factorization.hpp"
+#include "container/container.hpp"
+
+namespace relume {
+
+struct TargetSearch {
+  CompressedField field;
+  CompressionOptions options;         // the chosen terms and clusters
+  nlohmann::ordered_json explanation;  // every candidate tried, its bytes and the choice
+};
+
+// `options` gives everything but terms, clusters and the residual budget. `stats` receives the
+// statistics of the chosen run.
+TargetSearch compress_to_target_error(const ReflectanceField& field,
+                                      const CompressionOptions& options, double target_error,
+                                      const ContainerOptions& container, CompressionStats& stats);
+
+// Cuts every row of `field`'s residual to the shortest prefix such that the mean per-function
+// relative error over its stored rows reaches `target_error` (rows sorted by |value|, as stored).
+// `energy` holds each stored row's ||R[p,:]||^2. Returns the mean error reached.
+double cut_residual_to_error(CompressedField& field, const std::vector<double>& energy,
+                             double target_error);
+
+}  // namespace relume

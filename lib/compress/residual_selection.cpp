@@ -1,0 +1,89 @@
+// Implementation of residual selection (see residual_selection.hpp).
+#include "compress/residual_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/error.hpp"
+
+namespace relume {
+
+int ResidualBudget::entries_for(int lights) const {
+  if (percent < 0) return std::min(entries, lights);
+  return std::min(lights, static_cast<int>(std::lround(percent / 100.0 * lights)));
+}
+
+std::string ResidualBudget::describe() const {
+  if (percent < 0) return std::to_string(entries);
+  char text[32];
+  std::snprintf(text, sizeof text, "%g%%", percent);
+  return text;
+}
+
+ResidualBudget parse_residual_budget(const std::string& text) {
+  const auto bad = [&] {
+    return Error("residual budget '" + text +
+                 "' is invalid: expected a count of entries per function (for example 10) or a "
+                 "percentage of the lights (for example 5%)");
+  };
+  if (text.empty()) throw bad();
+  const bool is_percent = text.back() == '%';
+  const std::string number = is_percent ? text.substr(0, text.size() - 1) : text;
+  if (number.empty()) throw bad();
+  char* end = nullptr;
+  ResidualBudget budget;
+  if (is_percent) {
+    const double value = std::strtod(number.c_str(), &end);
+    if (end != number.c_str() + number.size() || !std::isfinite(value) || value < 0 ||
+        value > 100)
+      throw bad();
+    budget.percent = value;
+  } else {
+    const long value = std::strtol(number.c_str(), &end, 10);
+    if (end != number.c_str() + number.size() || value < 0 || value > 1 << 24) throw bad();
+    budget.entries = static_cast<int>(value);
+  }
+  return budget;
+}
+
+void append_residual_row(const float* residual, int lights, int max_entries, float threshold,
+                         ResidualRows& rows, std::vector<int>& scratch) {
+  scratch.clear();
+  for (int i = 0; i < lights; ++i) {
+    if (!std::isfinite(residual[i]))
+      throw Error("residual of light " + std::to_string(i) + " is not finite (" +
+                  std::to_string(residual[i]) + ")");
+    if (residual[i] != 0.0f && std::fabs(residual[i]) > threshold) scratch.push_back(i);
+  }
+  const auto larger = [&](int a, int b) {
+    const float fa = std::fabs(residual[a]), fb = std::fabs(residual[b]);
+    return fa != fb ? fa > fb : a < b;
+  };
+  std::size_t kept = scratch.size();
+  if (max_entries >= 0 && kept > std::size_t(max_entries)) {
+    kept = std::size_t(max_entries);
+    std::partial_sort(scratch.begin(), scratch.begin() + kept, scratch.end(), larger);
+  } else {
+    std::sort(scratch.begin(), scratch.end(), larger);
+  }
+  for (std::size_t k = 0; k < kept; ++k) {
+    rows.light_index.push_back(static_cast<std::uint32_t>(scratch[k]));
+    rows.values.push_back(residual[scratch[k]]);
+  }
+  rows.row_offsets.push_back(static_cast<std::uint32_t>(rows.values.size()));
+}
+
+ResidualRows select_residual(const RowMatrixF& residual, int max_entries, float threshold) {
+  ResidualRows rows;
+  rows.row_offsets.reserve(residual.rows() + 1);
+  rows.row_offsets.push_back(0);
+  std::vector<int> scratch;
+  for (Eigen::Index r = 0; r < residual.rows(); ++r)
+    append_residual_row(residual.row(r).data(), static_cast<int>(residual.cols()), max_entries,
+                        threshold, rows, scratch);
+  return rows;
+}
+
+}  // namespace relume

@@ -1,0 +1,37 @@
+// Residual selection (paper section 3.4): from a dense residual row E[p,:] = R[p,:] - W[p,:] F,
+// entries with |value| <= a threshold are dropped and at most n of the largest are kept, stored
+// sorted by |value| descending (ties by ascending light index) with their light index, so every
+// prefix of a row is the best residual of that length.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/compressed_field.hpp"
+
+namespace relume {
+
+// How many residual entries each function keeps: a count, or a percentage of the lights.
+struct ResidualBudget {
+  int entries = 0;         // used when percent < 0
+  double percent = -1.0;   // >= 0: round(percent / 100 * lights) entries
+
+  // Entries per function for a field of `lights` lights (never more than `lights`).
+  int entries_for(int lights) const;
+  std::string describe() const;  // "10" or "5%"
+};
+
+// "N" (a count >= 0) or "P%" (0 <= P <= 100); throws Error naming the bad text.
+ResidualBudget parse_residual_budget(const std::string& text);
+
+// Appends one row to `rows` (whose row_offsets must already hold the row's start): the entries of
+// residual[0..lights) with |value| > threshold, the `max_entries` largest in |value| (all of them
+// when max_entries < 0), sorted by |value| descending, ties by light index. `scratch` is reused
+// between calls. Throws Error on a non-finite value, naming its light index.
+void append_residual_row(const float* residual, int lights, int max_entries, float threshold,
+                         ResidualRows& rows, std::vector<int>& scratch);
+
+// All rows of a dense residual (rows x lights), as above.
+ResidualRows select_residual(const RowMatrixF& residual, int max_entries, float threshold);
+
+}  // namespace relume

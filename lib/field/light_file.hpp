@@ -1,0 +1,40 @@
+// Light-direction files in the conventions seen in the field:
+//  - plain text, one `x y z` per row (DiLiGenT light_directions.txt); blank lines and # comments
+//    are skipped;
+//  - RTI .lp: first line N, then N lines `filename x y z` (decimal commas accepted, file names
+//    may contain spaces: the last three fields are the direction);
+//  - a field folder: its light_directions.txt, or its single .lp file.
+// Directions are normalised; zero-length, non-numeric or non-finite ones are refused with the file
+// and line.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "field/reflectance_field.hpp"
+
+namespace relume {
+
+struct LpFile {
+  std::vector<std::filesystem::path> images;  // as written in the file, relative to its folder
+  LightDirections directions;
+};
+
+LpFile read_lp_file(const std::filesystem::path& path);
+
+// Plain `x y z` rows (also used for `R G B` rows: see read_rgb_rows).
+LightDirections read_direction_rows(const std::filesystem::path& path);
+
+// Any of the three forms above.
+LightDirections read_light_directions(const std::filesystem::path& path_or_folder);
+
+// Rows of three finite numbers (light intensities, light vectors). `what` names the quantity in
+// errors ("light intensity"). Negative values are allowed; NaN/Inf are refused.
+LightRgb read_rgb_rows(const std::filesystem::path& path, const std::string& what);
+
+// Writes rows of three numbers with full float precision, atomically.
+void write_rgb_rows(const std::filesystem::path& path, const LightRgb& rows,
+                    const std::string& header_comment);
+
+}  // namespace relume

@@ -1,0 +1,47 @@
+// Implementation of the image comparison (see image_difference.hpp).
+#include "image/image_difference.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace relume {
+
+ImageDifference image_difference(const Image& image, const Image& reference,
+                                 const std::string& image_label,
+                                 const std::string& reference_label) {
+  if (image.width != reference.width || image.height != reference.height ||
+      image.channels != reference.channels)
+    throw Error(image_label + " is " + std::to_string(image.width) + "x" +
+                std::to_string(image.height) + " with " + std::to_string(image.channels) +
+                " channels, " + reference_label + " is " + std::to_string(reference.width) + "x" +
+                std::to_string(reference.height) + " with " + std::to_string(reference.channels));
+  ImageDifference result;
+  result.values = image.pixels.size();
+  double difference = 0, energy = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const double a = image.pixels[i], r = reference.pixels[i];
+    if (!std::isfinite(a) || !std::isfinite(r)) {
+      const std::size_t pixel = i / image.channels;
+      throw Error((std::isfinite(a) ? reference_label : image_label) + ": pixel (" +
+                  std::to_string(pixel % image.width) + ", " + std::to_string(pixel / image.width) +
+                  ") channel " + std::to_string(i % image.channels) + " is " +
+                  std::to_string(std::isfinite(a) ? r : a) + ", expected a finite value");
+    }
+    const double d = a - r;
+    difference += d * d;
+    energy += r * r;
+    if (a < 0) ++result.negative_values;
+    if (std::abs(d) > result.max_abs_difference) {
+      const std::size_t pixel = i / image.channels;
+      result.max_abs_difference = std::abs(d);
+      result.max_x = int(pixel % image.width);
+      result.max_y = int(pixel / image.width);
+      result.max_channel = int(i % image.channels);
+    }
+  }
+  result.relative_squared_error = energy > 0 ? difference / energy : (difference > 0 ? 1.0 : 0.0);
+  return result;
+}
+
+}  // namespace relume

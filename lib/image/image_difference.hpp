@@ -1,0 +1,28 @@
+// How far an image is from a reference image of the same size: the relative squared error (the
+// per-image form of paper Eq. 16, sum (a - r)^2 / sum r^2), the largest absolute difference and
+// where it is, and how many values are negative (a relit compressed field can undershoot zero,
+// which an 8-bit output then shows as black).
+#pragma once
+
+#include <string>
+
+#include "image/image.hpp"
+
+namespace relume {
+
+struct ImageDifference {
+  // 0 when both images are all zero, 1 when only the reference is.
+  double relative_squared_error = 0;
+  double max_abs_difference = 0;
+  int max_x = 0, max_y = 0, max_channel = 0;  // where the largest difference is
+  std::size_t negative_values = 0;            // in the image (not the reference)
+  std::size_t values = 0;
+};
+
+// Throws Error naming both labels when the images differ in size or channels, or when either
+// holds NaN or Inf.
+ImageDifference image_difference(const Image& image, const Image& reference,
+                                 const std::string& image_label = "image",
+                                 const std::string& reference_label = "reference");
+
+}  // namespace relume

@@ -1,0 +1,48 @@
+// Consistency checks of a CompressedField in memory, part by part: the container writer runs all
+// of them before writing, the reader runs each on the part it decoded from a section (so errors
+// name the section), and reconstruction runs all of them before reading rows. Each throws
+// Error("<where>: <what is wrong>, expected <what>").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "model/compressed_field.hpp"
+
+namespace relume {
+
+// At most 2^32 functions: stored_function holds u32 function indices.
+inline constexpr std::uint64_t max_compressed_functions = std::uint64_t(1) << 32;
+
+// "stored row 12", for messages.
+std::string stored_row_name(std::size_t row);
+
+// width, height, channels, lights >= 1; terms, clusters >= 0; at most 2^32 functions; a known
+// transform.
+void check_dimensions(const CompressedField& field, const std::string& where);
+// lights rows of directions and intensities, all finite.
+void check_lights(const CompressedField& field, const std::string& where);
+// width x height mask entries.
+void check_mask(const CompressedField& field, const std::string& where);
+// Stored functions strictly ascending and below width x height x channels.
+void check_functions(const CompressedField& field, const std::string& where);
+// One cluster id per stored row, each below clusters.
+void check_clusters(const CompressedField& field, const std::string& where);
+// clusters x terms x lights finite basis values.
+void check_bases(const CompressedField& field, const std::string& where);
+// W is stored rows x terms, finite.
+void check_weights(const CompressedField& field, const std::string& where);
+// stored rows + 1 offsets from 0, non-decreasing, ending at the entry count; as many light
+// indices as values. (No stored rows: empty offsets or {0} are both accepted.)
+void check_residual_offsets(const CompressedField& field, const std::string& where);
+// Light indices below lights, no light twice in a row. Needs valid offsets.
+void check_residual_indices(const CompressedField& field, const std::string& where);
+// Finite values, each row sorted by |value| descending. Needs valid offsets.
+void check_residual_values(const CompressedField& field, const std::string& where);
+
+// All of the above, in that order; `context` prefixes the message (for example "cannot write
+// scene.relume").
+void validate_compressed_field(const CompressedField& field, const std::string& context);
+
+}  // namespace relume

@@ -1,0 +1,195 @@
+// Implementation of field reconstruction and the Eq. 16 error (see reconstruct_field.hpp).
+#include "model/reconstruct_field.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "model/compressed_field_checks.hpp"
+#include "core/error.hpp"
+#include "model/haar_transform.hpp"
+#include "core/parallel.hpp"
+
+namespace relume {
+namespace {
+
+void check_residual_cap(int residual_cap) {
+  if (residual_cap < all_residual_entries)
+    throw Error("residual cap " + std::to_string(residual_cap) +
+                " is invalid: expected -1 (all entries) or a count >= 0");
+}
+
+// sum[i] = (W[row,:] F^{c(row)})[i] + the row's first `residual_cap` residual entries, in double.
+void accumulate_stored_row(const CompressedField& field, std::size_t row, int residual_cap,
+                           double* sum) {
+  const int lights = field.lights;
+  std::fill(sum, sum + lights, 0.0);
+  const float* basis = field.basis(static_cast<int>(field.cluster[row]));
+  for (int j = 0; j < field.terms; ++j) {
+    const double w = field.weights(static_cast<Eigen::Index>(row), j);
+    const float* f = basis + std::size_t(j) * lights;
+    for (int i = 0; i < lights; ++i) sum[i] += w * f[i];
+  }
+  const std::uint32_t begin = field.residual.row_offsets[row];
+  const std::uint32_t length = field.residual.row_offsets[row + 1] - begin;
+  const std::uint32_t kept =
+      residual_cap < 0 ? length : std::min<std::uint32_t>(length, residual_cap);
+  for (std::uint32_t k = begin; k < begin + kept; ++k)
+    sum[field.residual.light_index[k]] += field.residual.values[k];
+}
+
+// Function p's reconstruction in the light basis into `out` (zero when not stored); `sum` is
+// scratch of field.lights doubles.
+void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
+                          double* sum, float* out) {
+  if (stored_row < 0) {
+    std::fill(out, out + field.lights, 0.0f);
+    return;
+  }
+  accumulate_stored_row(field, std::size_t(stored_row), residual_cap, sum);
+  std::copy(sum, sum + field.lights, out);
+  if (field.transform == BasisTransform::haar) haar_inverse(out, field.lights, 1);
+}
+
+// Stored row of every function, -1 where the function is not stored.
+std::vector<std::int64_t> stored_row_of_function(const CompressedField& field) {
+  std::vector<std::int64_t> row_of(static_cast<std::size_t>(field.functions()), -1);
+  for (std::size_t r = 0; r < field.stored_rows(); ++r)
+    row_of[field.stored_function[r]] = std::int64_t(r);
+  return row_of;
+}
+
+// Per-worker buffers for comparing one function at a time.
+struct FunctionScratch {
+  explicit FunctionScratch(int lights) : sum(lights), exact(lights), approx(lights) {}
+  std::vector<double> sum;
+  std::vector<float> exact, approx;
+};
+
+// Eq. 16 over items [0, count): fill(item, scratch) puts the exact and approximate rows in
+// scratch.exact / scratch.approx and returns false to leave the item out entirely. Items are
+// summed in fixed blocks in order, so the result does not depend on the thread count.
+template <class Fill>
+RelativeError average_relative_error(std::size_t count, int lights, unsigned threads, Fill fill) {
+  constexpr std::size_t block = 1024;
+  const std::size_t blocks = (count + block - 1) / block;
+  std::vector<RelativeError> partial(blocks);
+  std::vector<FunctionScratch> scratch(resolve_thread_count(threads), FunctionScratch(lights));
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
+    FunctionScratch& rows = scratch[worker];
+    RelativeError& part = partial[b];
+    for (std::size_t item = b * block; item < std::min(count, (b + 1) * block); ++item) {
+      if (!fill(item, rows)) continue;
+      double energy = 0, error = 0;
+      for (int i = 0; i < lights; ++i) {
+        const double exact = rows.exact[i];
+        energy += exact * exact;
+        error += (exact - rows.approx[i]) * (exact - rows.approx[i]);
+      }
+      if (energy == 0) {
+        ++part.zero_energy_skipped;
+        continue;
+      }
+      part.mean += error / energy;
+      ++part.functions_averaged;
+    }
+  });
+  RelativeError total;
+  for (const RelativeError& part : partial) {
+    total.mean += part.mean;
+    total.functions_averaged += part.functions_averaged;
+    total.zero_energy_skipped += part.zero_energy_skipped;
+  }
+  if (total.functions_averaged > 0) total.mean /= double(total.functions_averaged);
+  return total;
+}
+
+std::string shape_text(int width, int height, int channels, int lights) {
+  return std::to_string(width) + "x" + std::to_string(height) + "x" + std::to_string(channels) +
+         " with " + std::to_string(lights) + " lights";
+}
+
+}  // namespace
+
+void reconstruct_stored_row(const CompressedField& field, std::size_t row, int residual_cap,
+                            float* out) {
+  check_residual_cap(residual_cap);
+  if (row >= field.stored_rows())
+    throw Error("stored row " + std::to_string(row) + " is out of range: the field stores " +
+                std::to_string(field.stored_rows()) + " rows");
+  std::vector<double> sum(field.lights);
+  accumulate_stored_row(field, row, residual_cap, sum.data());
+  std::copy(sum.begin(), sum.end(), out);
+}
+
+ReflectanceField reconstruct_field(const CompressedField& field, int residual_cap) {
+  check_residual_cap(residual_cap);
+  validate_compressed_field(field, "cannot reconstruct the compressed field");
+  ReflectanceField result;
+  result.width = field.width;
+  result.height = field.height;
+  result.channels = field.channels;
+  result.values = RowMatrixF::Zero(field.functions(), field.lights);
+  result.mask = field.mask;
+  result.directions = field.directions;
+  result.intensities = field.intensities;
+  std::vector<std::vector<double>> scratch(resolve_thread_count(0),
+                                           std::vector<double>(field.lights));
+  parallel_for(field.stored_rows(), 0, [&](std::size_t r, unsigned worker) {
+    reconstruct_function(field, std::int64_t(r), residual_cap, scratch[worker].data(),
+                         result.values.row(field.stored_function[r]).data());
+  });
+  return result;
+}
+
+RelativeError relative_error(const ReflectanceField& original, const CompressedField& compressed,
+                             bool masked_only, int residual_cap, unsigned threads) {
+  check_residual_cap(residual_cap);
+  validate_compressed_field(compressed, "cannot measure the error of the compressed field");
+  if (original.width != compressed.width || original.height != compressed.height ||
+      original.channels != compressed.channels || original.lights() != compressed.lights ||
+      original.functions() != compressed.functions())
+    throw Error(
+        "cannot compare fields of different shapes: the original is " +
+        shape_text(original.width, original.height, original.channels, original.lights()) +
+        ", the compressed one " +
+        shape_text(compressed.width, compressed.height, compressed.channels, compressed.lights));
+  const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
+  return average_relative_error(std::size_t(original.functions()), compressed.lights, threads,
+                                [&](std::size_t p, FunctionScratch& rows) {
+                                  if (masked_only && !compressed.mask[p / compressed.channels])
+                                    return false;
+                                  const float* exact = original.values.row(Eigen::Index(p)).data();
+                                  std::copy(exact, exact + compressed.lights, rows.exact.begin());
+                                  reconstruct_function(compressed, row_of[p], residual_cap,
+                                                       rows.sum.data(), rows.approx.data());
+                                  return true;
+                                });
+}
+
+RelativeError relative_error(const CompressedField& reference, const CompressedField& approximation,
+                             int approximation_cap, unsigned threads) {
+  check_residual_cap(approximation_cap);
+  validate_compressed_field(reference, "cannot measure the error: the reference field");
+  validate_compressed_field(approximation, "cannot measure the error: the approximation");
+  if (reference.width != approximation.width || reference.height != approximation.height ||
+      reference.channels != approximation.channels || reference.lights != approximation.lights)
+    throw Error(
+        "cannot compare compressed fields of different shapes: " +
+        shape_text(reference.width, reference.height, reference.channels, reference.lights) +
+        " and " +
+        shape_text(approximation.width, approximation.height, approximation.channels,
+                   approximation.lights));
+  const std::vector<std::int64_t> approximation_row = stored_row_of_function(approximation);
+  return average_relative_error(
+      reference.stored_rows(), reference.lights, threads,
+      [&](std::size_t r, FunctionScratch& rows) {
+        reconstruct_function(reference, std::int64_t(r), all_residual_entries, rows.sum.data(),
+                             rows.exact.data());
+        reconstruct_function(approximation, approximation_row[reference.stored_function[r]],
+                             approximation_cap, rows.sum.data(), rows.approx.data());
+        return true;
+      });
+}
+
+}  // namespace relume

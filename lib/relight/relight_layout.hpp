@@ -1,0 +1,54 @@
+// The OpenCL relighter's device layout of a compressed field, built on the host before upload
+// (kernels/relight.cl reads it). Rows are padded to whole slices; W is slot-major inside each
+// slice. The residual has two regions, each a sequence of row groups stored slot-major (all of a
+// group's rows' entry e, then entry e + 1) and padded to the group's longest row:
+//   head: entries [0, head_entries) in groups of slice_rows rows (tall on CPUs, so that each
+//         entry index of many rows is one contiguous run and a residual cap reads only its runs);
+//   tail: entries from head_entries on, in groups of tail_rows rows (the row vector), where tall
+//         groups would read too many runs at once. tail_rows 0: no tail (head_entries unlimited).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/compressed_field.hpp"
+
+namespace relume {
+
+// One residual region: group g's slots start at offsets[g] (offsets has one more entry: the end),
+// width[g] entries per row, lanes[g] real rows.
+struct ResidualRegion {
+  int group_rows = 0;
+  std::vector<std::uint32_t> offsets;
+  std::vector<std::uint32_t> width;
+  std::vector<std::uint32_t> lanes;
+
+  // Slots a cap reads: min(width, cap) entries of each real row, padding included.
+  std::uint64_t slots_read(std::uint32_t cap) const;
+};
+
+struct RelightLayoutShape {
+  int slice_rows = 32;
+  int tail_rows = 0;                         // 0: every entry in the head
+  std::uint32_t head_entries = 0xffffffffu;  // entries per row in the head
+};
+
+struct RelightLayout {
+  std::vector<std::uint32_t> stored_function;  // padded to whole slices
+  std::vector<std::uint32_t> cluster;          // padded to whole slices
+  std::vector<float> weights;                  // slot-major inside each slice
+  ResidualRegion head, tail;                   // the tail's slots follow the head's
+  std::vector<float> residual_values;          // zero padded
+  std::vector<std::uint32_t> residual_lights;
+  std::vector<float> blocks;  // F^k in 2x2 blocks, zero-padded to even terms and lights
+};
+
+RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutShape& shape,
+                            int lights_even);
+
+// Rows per slice for CPU devices: the tallest power of two from 4096 down to row_vector whose
+// padding (each slice is as wide as its longest row's first head_entries entries, and the last
+// slice's unused rows count too) adds at most 1/8 to those entries.
+int tall_slice_rows(const CompressedField& field, int row_vector, std::uint32_t head_entries);
+
+}  // namespace relume

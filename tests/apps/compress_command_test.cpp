@@ -1,0 +1,326 @@
+// Tests of `relume compress` (run as a command on fields written to disk) and of the checkpoints
+// it resumes from: containers and reports are written, a failing input does not stop the others,
+// and a resumed clustering continues where the checkpoint left it.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+
+#include "compress/checkpoint.hpp"
+#include "compress/clustered_factorization.hpp"
+#include "container/container.hpp"
+#include "core/error.hpp"
+#include "field/field_io.hpp"
+#include "opencl/runtime.hpp"
+#include "model/reconstruct_field.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+// Two planted clusters (2 terms, 24 lights) with one residual entry per function; the left half
+// of the image is inside the mask.
+ReflectanceField small_field(std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<float> uniform(0.1f, 1.0f);
+  ReflectanceField field;
+  field.width = 16;
+  field.height = 12;
+  field.channels = 3;
+  const int lights = 24;
+  field.mask.assign(field.pixels(), 0);
+  for (int y = 0; y < field.height; ++y)
+    for (int x = 0; x < field.width / 2; ++x) field.mask[y * field.width + x] = 1;
+  field.directions.resize(lights, 3);
+  for (int i = 0; i < lights; ++i) {
+    const float angle = 6.2831853f * i / lights;
+    field.directions.row(i) << 0.6f * std::cos(angle), 0.6f * std::sin(angle), 0.8f;
+  }
+  field.intensities.setOnes(lights, 3);
+  RowMatrixF bases[2] = {RowMatrixF(2, lights), RowMatrixF(2, lights)};
+  for (auto& basis : bases)
+    for (int i = 0; i < basis.size(); ++i) basis.data()[i] = uniform(random);
+  field.values.resize(field.pixels() * field.channels, lights);
+  for (std::int64_t p = 0; p < field.functions(); ++p) {
+    Eigen::RowVector2f w(uniform(random), uniform(random));
+    field.values.row(p) = w * bases[(p / 3) % 2];
+    field.values(p, static_cast<int>(random() % lights)) += uniform(random);
+  }
+  for (int i = 0; i < lights; ++i) field.image_names.push_back(std::to_string(i + 1) + ".exr");
+  return field;
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(CompressCommand, WritesAContainerAndAReport) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(1));
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() +
+      "' --clusters 2 --terms 2 --residual 1 --threads 2 --report '" +
+      (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const CompressedField compressed = read_container(dir / "out.relume");
+  EXPECT_EQ(compressed.clusters, 2);
+  EXPECT_EQ(compressed.terms, 2);
+  EXPECT_EQ(compressed.stored_rows(), 16u * 12 / 2 * 3);  // the masked half
+  const nlohmann::json report = read_json(dir / "report.json");
+  for (const char* key : {"seconds", "bytes", "ratio", "error_all", "error_masked", "sections",
+                          "sparseness", "peak_memory_bytes", "clustering", "phases_seconds"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["bytes"].get<std::uint64_t>(), std::filesystem::file_size(dir / "out.relume"));
+  EXPECT_LT(report["error_masked"].get<double>(), 1e-4);
+  // Outside the mask nothing is stored: those functions count as fully lost in error_all.
+  EXPECT_GT(report["error_all"].get<double>(), 0.4);
+  EXPECT_FALSE(report["clustering"]["iterations"].empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.relume.checkpoint"));
+  EXPECT_FALSE(report.contains("precision_cost")) << "float32 costs nothing";
+}
+
+TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostReported) {
+  testing::TempDir dir;
+  const ReflectanceField field = small_field(2);
+  write_field_folder(dir / "field", field);
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "half.relume").string() +
+      "' --clusters 2 --terms 2 --residual 1 --weights-precision float16 "
+      "--residual-precision float16 --report '" +
+      (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report = read_json(dir / "report.json");
+  const double stored_error = relative_error(field, read_container(dir / "half.relume"), true).mean;
+  EXPECT_NEAR(report["error_masked"].get<double>(), stored_error, 1e-12);
+  const nlohmann::json& cost = report["precision_cost"];
+  EXPECT_EQ(cost["weights"], "float16");
+  EXPECT_EQ(cost["residual_values"], "float16");
+  EXPECT_EQ(cost["error_masked_stored"].get<double>(), report["error_masked"].get<double>());
+  // Half precision keeps about 3 decimal digits: the float32 factorization is more accurate.
+  EXPECT_LT(cost["error_masked_float32"].get<double>(), stored_error);
+  EXPECT_GT(cost["quantization_error"].get<double>(), 1e-9);
+  EXPECT_LT(cost["quantization_error"].get<double>(), 1e-5);
+}
+
+TEST(CompressCommand, SeveralInputsGoToAFolderAndAFailureDoesNotStopTheOthers) {
+  testing::TempDir dir;
+  write_field_folder(dir / "first", small_field(2));
+  write_field_folder(dir / "second", small_field(3));
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "first").string() + "' '" + (dir / "missing").string() + "' '" +
+      (dir / "second").string() + "' -o '" + (dir / "out").string() +
+      "' --clusters 2 --terms 2 --residual 10% --threads 2 --report '" +
+      (dir / "report.json").string() + "'");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("missing"), std::string::npos) << result.output;
+  EXPECT_NO_THROW(read_container(dir / "out" / "first.relume"));
+  EXPECT_NO_THROW(read_container(dir / "out" / "second.relume"));
+  const nlohmann::json report = read_json(dir / "report.json");
+  EXPECT_EQ(report["runs"].size(), 2u);
+  ASSERT_EQ(report["failed"].size(), 1u);
+  EXPECT_NE(report["failed"][0]["input"].get<std::string>().find("missing"), std::string::npos);
+}
+
+TEST(CompressCommand, RefusesBadArguments) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(4));
+  const std::string base =
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() + "' ";
+  for (const char* bad : {"--residual 5%%", "--residual -2", "--terms 0", "--transform dct",
+                          "--solver simplex", "--assign fpga", "--terms 30"}) {
+    const auto result = testing::run_relume(base + bad);
+    EXPECT_NE(result.exit_code, 0) << bad;
+    EXPECT_NE(result.output.find("error"), std::string::npos) << bad << ": " << result.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.relume"));
+}
+
+// --target-error: the error reached is at most the target, the container is the smallest of the
+// (terms, clusters) pairs tried, and each function keeps a prefix of its sorted residual.
+TEST(CompressCommand, TargetErrorReachesTheTargetWithTheSmallestContainerTried) {
+  testing::TempDir dir;
+  ReflectanceField field = small_field(3);
+  std::mt19937_64 random(4);
+  std::normal_distribution<float> noise(0.0f, 0.05f);
+  for (std::int64_t i = 0; i < field.values.size(); ++i) field.values.data()[i] += noise(random);
+  write_field_folder(dir / "field", field);
+  const double target = 0.002;
+  const auto result = testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+                                          (dir / "t.relume").string() + "' --target-error " +
+                                          std::to_string(target) + " --report '" +
+                                          (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report = read_json(dir / "report.json");
+  const CompressedField compressed = read_container(dir / "t.relume");
+  const double reached = relative_error(field, compressed, true).mean;
+  EXPECT_LE(reached, target * (1 + 1e-6));
+  EXPECT_NEAR(report["error_masked"].get<double>(), reached, 1e-12);
+
+  const nlohmann::json& choice = report["target_error"];
+  ASSERT_FALSE(choice["tried"].empty());
+  std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+  for (const auto& tried : choice["tried"]) {
+    smallest = std::min(smallest, tried["bytes"].get<std::uint64_t>());
+    EXPECT_LE(tried["error_over_stored_rows"].get<double>(), target * (1 + 1e-6));
+  }
+  EXPECT_EQ(choice["chosen"]["bytes"].get<std::uint64_t>(), smallest);
+  EXPECT_EQ(choice["chosen"]["terms"].get<int>(), compressed.terms);
+  // Per-function residual lengths differ, and the error needs some residual at this target.
+  std::set<std::uint32_t> lengths;
+  for (std::size_t r = 0; r < compressed.stored_rows(); ++r)
+    lengths.insert(compressed.residual.row_offsets[r + 1] - compressed.residual.row_offsets[r]);
+  EXPECT_GT(lengths.size(), 1u);
+  EXPECT_GT(relative_error(field, compressed, true, 0).mean, target);
+}
+
+// scripts/check_error.py's output for ORIGINAL against DECOMPRESSED, with the error it printed.
+struct IndependentCheck {
+  std::string output;
+  double error_masked = -1;
+};
+
+IndependentCheck check_error(const std::filesystem::path& original,
+                             const std::filesystem::path& decompressed) {
+  const auto result = testing::run_command(
+      "/usr/bin/python3 '" + (testing::source_dir() / "scripts/check_error.py").string() + "' '" +
+      original.string() + "' '" + decompressed.string() + "'");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  IndependentCheck check{result.output};
+  const std::string label = "error_masked (Eq. 16): ";
+  const std::size_t at = result.output.find(label);
+  EXPECT_NE(at, std::string::npos) << result.output;
+  if (at != std::string::npos)
+    check.error_masked = std::stod(result.output.substr(at + label.size()));
+  return check;
+}
+
+// `relume compress INPUT OPTIONS` into FOLDER/c.relume, then `relume decompress` into
+// DECOMPRESSED; returns the compression report.
+nlohmann::json compress_and_decompress(const std::filesystem::path& input,
+                                       const std::string& options,
+                                       const std::filesystem::path& folder,
+                                       const std::filesystem::path& decompressed) {
+  const std::string container = (folder / "c.relume").string();
+  auto result = testing::run_relume("compress '" + input.string() + "' -o '" + container + "' " +
+                                    options + " --report '" + (folder / "c.json").string() + "'");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  result = testing::run_relume("decompress '" + container + "' -o '" + decompressed.string() + "'");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  return read_json(folder / "c.json");
+}
+
+// Skips the test where the system python lacks what check_error.py needs.
+#define REQUIRE_CHECK_ERROR_PYTHON()                                                          \
+  if (testing::run_command("/usr/bin/python3 -c 'import numpy, OpenImageIO'").exit_code != 0) \
+  GTEST_SKIP() << "/usr/bin/python3 lacks numpy or OpenImageIO (python3-numpy, "              \
+                  "python3-openimageio)"
+
+// The compress report's error recomputed from the decompressed EXRs by
+// scripts/check_error.py (NumPy and OpenImageIO's Python bindings, none of relume's code).
+TEST(CompressCommand, ReportedErrorMatchesAnIndependentCheckOnRealData) {
+  RELUME_REQUIRE_SHARED_DATA(data);
+  REQUIRE_CHECK_ERROR_PYTHON();
+  testing::TempDir dir;
+  const std::string bear = (data / "olat/diligent-bear-crop8").string();
+  const nlohmann::json report =
+      compress_and_decompress(bear, "--clusters 16 --terms 3 --residual 4 --iterations 2",
+                              dir.path(), dir / "decompressed");
+  const IndependentCheck check = check_error(bear, dir / "decompressed");
+
+  const double reported = report["error_masked"].get<double>();
+  EXPECT_GT(reported, 1e-4) << "a lossy setting, so the comparison means something";
+  EXPECT_NEAR(check.error_masked, reported, 1e-4 * reported) << check.output;
+  const auto& detail = report["error_masked_detail"];
+  const std::string functions =
+      "functions inside the mask: " + std::to_string(detail["functions_averaged"].get<int>() +
+                                                     detail["zero_energy_skipped"].get<int>());
+  EXPECT_NE(check.output.find(functions), std::string::npos) << check.output;
+}
+
+// A field folder without filenames.txt, its images numbered 1.exr ... 24.exr: relume and
+// check_error.py both take them in the order of their numbers, so their errors agree (in name
+// order 10.exr would be the second light and the two would differ).
+TEST(CompressCommand, NumberedImagesWithoutAListingAreCheckedInTheSameOrder) {
+  REQUIRE_CHECK_ERROR_PYTHON();
+  testing::TempDir dir;
+  const std::filesystem::path field = dir / "field";
+  write_field_folder(field, small_field(5));
+  std::filesystem::remove(field / "filenames.txt");
+  for (int i = 1; i <= 24; ++i) {
+    char padded[16];
+    std::snprintf(padded, sizeof padded, "%03d.exr", i);
+    std::filesystem::rename(field / padded, field / (std::to_string(i) + ".exr"));
+  }
+  const double reported = compress_and_decompress(field, "--clusters 2 --terms 1 --residual 1",
+                                                  dir.path(), dir / "decompressed")["error_masked"]
+                              .get<double>();
+  EXPECT_GT(reported, 1e-4) << "one term for two-term clusters: a lossy setting";
+  EXPECT_NEAR(check_error(field, dir / "decompressed").error_masked, reported, 1e-4 * reported);
+}
+
+// The assignment runs as the OpenCL kernel unless --assign cpu asks for the C++ path; both make
+// the same choices on real data, so the containers' errors agree closely.
+TEST(CompressCommand, OpenClAssignmentIsTheDefaultAndAgreesWithTheCpuPath) {
+  RELUME_REQUIRE_SHARED_DATA(data);
+  testing::TempDir dir;
+  const std::string bear = (data / "olat/diligent-bear-crop8").string();
+  std::map<std::string, nlohmann::json> reports;
+  for (const std::string assign : {"", "--assign cpu"}) {
+    const auto result =
+        testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
+                            "' --clusters 16 --terms 3 --residual 4 --iterations 2 --threads 2 " +
+                            assign + " --report '" + (dir / "b.json").string() + "'");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    reports[assign] = read_json(dir / "b.json");
+  }
+  const std::string device = reports[""]["assignment_device"].get<std::string>();
+  EXPECT_NE(device, "cpu");
+  EXPECT_EQ(device, select_opencl_device().label());
+  EXPECT_EQ(reports["--assign cpu"]["assignment_device"], "cpu");
+  const double opencl = reports[""]["error_masked"].get<double>();
+  const double cpu = reports["--assign cpu"]["error_masked"].get<double>();
+  EXPECT_GT(cpu, 1e-4) << "a lossy setting, so the comparison means something";
+  EXPECT_NEAR(opencl, cpu, 0.01 * cpu);
+}
+
+TEST(CompressCheckpoint, ResumingContinuesTheIterationsOfTheCheckpoint) {
+  testing::TempDir dir;
+  const ReflectanceField field = small_field(5);
+  CompressionOptions options;
+  options.clustering.clusters = 2;
+  options.clustering.terms = 2;
+  options.clustering.quiet = true;
+  options.clustering.max_iterations = 3;
+  options.clustering.settle_fraction = -1;  // run every iteration
+  options.residual.entries = 1;
+
+  // An interrupted run: keep the checkpoint of the second iteration.
+  CompressionStats stats;
+  int calls = 0;
+  const auto checkpoint = dir / "run.checkpoint";
+  compress_field(field, options, stats, [&](const ClusterModel& model, const IterationRecord&) {
+    if (++calls == 2)
+      write_checkpoint(checkpoint, "fingerprint", model, stats.clustering.iterations);
+  });
+  ASSERT_EQ(stats.clustering.iterations.size(), 4u);  // the first assignment and 3 iterations
+
+  const ClusteringResume resume = read_checkpoint(checkpoint, "fingerprint");
+  EXPECT_EQ(resume.iterations.size(), 2u);
+  CompressionStats resumed_stats;
+  const CompressedField resumed = compress_field(field, options, resumed_stats, {}, &resume);
+  ASSERT_EQ(resumed_stats.clustering.iterations.size(), 4u);
+  EXPECT_EQ(resumed_stats.clustering.iterations.back().iteration, 3);
+  EXPECT_LT(relative_error(field, resumed, true).mean, 1e-4);
+
+  EXPECT_THROW(read_checkpoint(checkpoint, "another input"), Error);
+  std::filesystem::resize_file(checkpoint, std::filesystem::file_size(checkpoint) - 4);
+  EXPECT_THROW(read_checkpoint(checkpoint, "fingerprint"), Error);
+}
+
+}  // namespace
+}  // namespace relume

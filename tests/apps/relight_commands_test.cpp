@@ -1,0 +1,147 @@
+// Tests of `relume relight` on .relume containers and of `relume relight-sequence`, run as
+// commands on a small synthetic scene compressed once per suite: the OpenCL render (PoCL) agrees
+// with the C++ reference and with the decompressed field relit as an uncompressed one, the
+// residual cap trades accuracy, sequence frames equal single relights, and bad input is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "image/image_io.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+namespace fs = std::filesystem;
+
+// sum (a - b)^2 / sum b^2 over every pixel and channel.
+double relative_difference(const Image& a, const Image& b) {
+  EXPECT_EQ(a.pixels.size(), b.pixels.size());
+  double difference = 0, energy = 0;
+  for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+    difference += std::pow(double(a.pixels[i]) - b.pixels[i], 2);
+    energy += double(b.pixels[i]) * b.pixels[i];
+  }
+  return difference / energy;
+}
+
+class RelightCommands : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    folder_ = new testing::TempDir;
+    run_or_fail("synth -o '" + path("scene") + "' --size 24x20 --lights 40 --samples 1");
+    run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
+                "' --clusters 4 --terms 2 --residual 6");
+    run_or_fail("sky -o '" + path("sky.exr") + "'");
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    std::ofstream lights(path("lights.txt"));
+    for (int i = 0; i < 40; ++i)
+      lights << uniform(random) << ' ' << uniform(random) << ' ' << uniform(random) << '\n';
+  }
+  static void TearDownTestSuite() { delete folder_; }
+
+  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
+  static void run_or_fail(const std::string& arguments) {
+    const auto result = testing::run_relume(arguments);
+    ASSERT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
+  }
+  // `relume relight` of the container into `output` with extra arguments; returns the image.
+  static Image relight(const std::string& input, const std::string& light_arguments,
+                       const std::string& output) {
+    run_or_fail("relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
+    return read_image(path(output));
+  }
+
+  static testing::TempDir* folder_;
+};
+
+testing::TempDir* RelightCommands::folder_ = nullptr;
+
+TEST_F(RelightCommands, OpenClAgreesWithTheReferenceAndTheDecompressedField) {
+  const std::string lights = "--lights '" + path("lights.txt") + "'";
+  const Image opencl = relight(path("scene.relume"), lights, "opencl.exr");
+  const Image reference = relight(path("scene.relume"), lights + " --cpu", "reference.exr");
+  EXPECT_EQ(opencl.width, 24);
+  EXPECT_EQ(opencl.height, 20);
+  EXPECT_LT(relative_difference(opencl, reference), 1e-10);  // squared: 1e-5 relative L2
+
+  run_or_fail("decompress '" + path("scene.relume") + "' -o '" + path("decompressed") + "'");
+  const Image decompressed = relight(path("decompressed"), lights, "decompressed.exr");
+  EXPECT_LT(relative_difference(decompressed, reference), 1e-10);
+
+  // Against the uncompressed scene: lossy, yet close.
+  const Image original = relight(path("scene"), lights, "original.exr");
+  const double error = relative_difference(opencl, original);
+  EXPECT_GT(error, 0);
+  EXPECT_LT(error, 0.05);
+}
+
+TEST_F(RelightCommands, FewerResidualEntriesAreLessAccurate) {
+  const std::string lights = "--lights '" + path("lights.txt") + "'";
+  const Image original = relight(path("scene"), lights, "original.exr");
+  double previous = 0;
+  for (const char* residual : {"all", "3", "0"}) {
+    const Image image = relight(path("scene.relume"), lights + " --residual " + residual,
+                                std::string("cap-") + residual + ".exr");
+    const double error = relative_difference(image, original);
+    EXPECT_GT(error, previous) << "--residual " << residual;
+    previous = error;
+  }
+}
+
+TEST_F(RelightCommands, SequenceFramesEqualSingleRelightsAndReportTheirError) {
+  run_or_fail("relight-sequence '" + path("scene.relume") + "' --env '" + path("sky.exr") +
+              "' --frames 3 --rotate-step 120 --batch 2 --residual 2 --compare --report '" +
+              path("sequence.json") + "' -o '" + path("frames/%04d.exr") + "'");
+  for (int frame = 0; frame < 3; ++frame) {
+    const Image sequence = read_image(path("frames/000" + std::to_string(frame) + ".exr"));
+    const Image single = relight(path("scene.relume"),
+                                 "--env '" + path("sky.exr") + "' --rotate " +
+                                     std::to_string(120 * frame) + " --residual 2",
+                                 "single.exr");
+    EXPECT_LT(relative_difference(sequence, single), 1e-10) << "frame " << frame;
+  }
+  EXPECT_FALSE(fs::exists(path("frames/0003.exr")));
+  std::ifstream in(path("sequence.json"));
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["frames"], 3);
+  EXPECT_EQ(report["residual_cap"], 2);
+  EXPECT_GT(report["frames_per_second"].get<double>(), 0);
+  ASSERT_EQ(report["per_frame"].size(), 3u);
+  for (const auto& frame : report["per_frame"]) {
+    EXPECT_GT(frame["error"].get<double>(), 0) << "2 of 6 entries differ from the full residual";
+    EXPECT_LT(frame["error"].get<double>(), 0.5);
+  }
+}
+
+TEST_F(RelightCommands, BadInputIsRefusedWithAMessageAndNoOutput) {
+  auto result = testing::run_relume("relight-sequence '" + path("scene.relume") + "' --env '" +
+                                    path("sky.exr") + "' --frames 2 -o '" + path("bad/frame.exr") +
+                                    "'");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("frame-number conversion"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(path("bad")));
+
+  result = testing::run_relume("relight '" + path("missing.relume") + "' --env '" +
+                               path("sky.exr") + "' -o '" + path("missing.exr") + "'");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("missing.relume"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(path("missing.exr")));
+
+  {
+    std::ofstream short_file(path("short.txt"));
+    short_file << "1 1 1\n2 2 2\n";
+  }
+  result = testing::run_relume("relight '" + path("scene.relume") + "' --lights '" +
+                               path("short.txt") + "' -o '" + path("short.exr") + "'");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("short.txt"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(path("short.exr")));
+}
+
+}  // namespace
+}  // namespace relume

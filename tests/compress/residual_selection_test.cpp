@@ -1,0 +1,48 @@
+// Tests of residual selection: budgets parse, rows keep the largest entries above the threshold,
+// sorted by |value| descending with their light index, so every prefix is the best shorter row.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "compress/residual_selection.hpp"
+
+namespace relume {
+namespace {
+
+TEST(ResidualSelection, ParsesCountsAndPercentages) {
+  EXPECT_EQ(parse_residual_budget("10").entries_for(96), 10);
+  EXPECT_EQ(parse_residual_budget("500").entries_for(96), 96);
+  EXPECT_EQ(parse_residual_budget("5%").entries_for(96), 5);   // 4.8 rounds to 5
+  EXPECT_EQ(parse_residual_budget("100%").entries_for(96), 96);
+  EXPECT_EQ(parse_residual_budget("0%").entries_for(96), 0);
+  EXPECT_EQ(parse_residual_budget("2.5%").describe(), "2.5%");
+  for (const char* bad : {"", "%", "-1", "abc", "5%%", "101%", "3.5", "1e3x"})
+    EXPECT_THROW(parse_residual_budget(bad), Error) << bad;
+}
+
+TEST(ResidualSelection, KeepsTheLargestEntriesSortedByMagnitude) {
+  RowMatrixF residual(2, 6);
+  residual << 0.5f, -3.0f, 0.0f, 2.0f, -0.01f, 3.0f,  //
+      0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f;
+  const ResidualRows all = select_residual(residual, -1, 0.0f);
+  ASSERT_EQ(all.rows(), 2u);
+  EXPECT_EQ(all.row_offsets, (std::vector<std::uint32_t>{0, 5, 5}));
+  // |3| ties: the lower light index first.
+  EXPECT_EQ(all.light_index, (std::vector<std::uint32_t>{1, 5, 3, 0, 4}));
+  EXPECT_EQ(all.values, (std::vector<float>{-3.0f, 3.0f, 2.0f, 0.5f, -0.01f}));
+
+  const ResidualRows cut = select_residual(residual, 3, 0.0f);
+  EXPECT_EQ(cut.row_offsets, (std::vector<std::uint32_t>{0, 3, 3}));
+  EXPECT_EQ(cut.light_index, (std::vector<std::uint32_t>{1, 5, 3}));  // a prefix of `all`
+
+  const ResidualRows thresholded = select_residual(residual, 10, 0.5f);
+  EXPECT_EQ(thresholded.light_index, (std::vector<std::uint32_t>{1, 5, 3}));
+}
+
+TEST(ResidualSelection, RefusesNonFiniteResiduals) {
+  RowMatrixF residual(1, 3);
+  residual << 1.0f, std::numeric_limits<float>::infinity(), 0.0f;
+  EXPECT_THROW(select_residual(residual, 2, 0.0f), Error);
+}
+
+}  // namespace
+}  // namespace relume

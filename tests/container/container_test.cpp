@@ -1,0 +1,582 @@
+// Tests of the .relume container: exact round trips, half precision, index widths, and refusal of
+// truncated, altered, foreign and inconsistent files with messages naming the file and section.
+// Also runs `relume info` on a written container.
+#include "container/container.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "container/container_bytes.hpp"
+#include "container/crc32.hpp"
+#include "core/error.hpp"
+#include "image/image_io.hpp"
+#include "model/random_compressed_field.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+using testing::TempDir;
+
+// 6x5 pixels, 3 channels, 10 lights, 3 clusters, 2 terms; about a third of the functions are not
+// stored and residual rows have 0 to 5 entries.
+CompressedField sample_field(std::uint64_t seed = 7, int lights = 10) {
+  RandomFieldShape shape;
+  shape.width = 6;
+  shape.height = 5;
+  shape.channels = 3;
+  shape.lights = lights;
+  shape.clusters = 3;
+  shape.terms = 2;
+  shape.residual_per_function = 5;
+  shape.vary_residual = true;
+  shape.stored_fraction = 0.65;
+  shape.seed = seed;
+  CompressedField field = random_compressed_field(shape);
+  field.mask[0] = 1;  // inside the mask yet not stored, if its functions were not drawn
+  field.intensities.col(1).setConstant(0.5f);
+  return field;
+}
+
+// Every member equal, floats compared bit for bit.
+void expect_identical(const CompressedField& a, const CompressedField& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  EXPECT_EQ(a.channels, b.channels);
+  EXPECT_EQ(a.lights, b.lights);
+  EXPECT_EQ(a.terms, b.terms);
+  EXPECT_EQ(a.clusters, b.clusters);
+  EXPECT_EQ(a.transform, b.transform);
+  EXPECT_EQ(a.mask, b.mask);
+  auto same_bits = [](const float* x, const float* y, std::size_t n) {
+    return std::memcmp(x, y, n * sizeof(float)) == 0;
+  };
+  ASSERT_EQ(a.directions.rows(), b.directions.rows());
+  EXPECT_TRUE(same_bits(a.directions.data(), b.directions.data(), a.directions.size()));
+  ASSERT_EQ(a.intensities.rows(), b.intensities.rows());
+  EXPECT_TRUE(same_bits(a.intensities.data(), b.intensities.data(), a.intensities.size()));
+  EXPECT_EQ(a.stored_function, b.stored_function);
+  EXPECT_EQ(a.cluster, b.cluster);
+  ASSERT_EQ(a.weights.rows(), b.weights.rows());
+  ASSERT_EQ(a.weights.cols(), b.weights.cols());
+  EXPECT_TRUE(same_bits(a.weights.data(), b.weights.data(), a.weights.size()));
+  ASSERT_EQ(a.bases.size(), b.bases.size());
+  EXPECT_TRUE(same_bits(a.bases.data(), b.bases.data(), a.bases.size()));
+  EXPECT_EQ(a.residual.row_offsets, b.residual.row_offsets);
+  EXPECT_EQ(a.residual.light_index, b.residual.light_index);
+  ASSERT_EQ(a.residual.values.size(), b.residual.values.size());
+  EXPECT_TRUE(
+      same_bits(a.residual.values.data(), b.residual.values.data(), a.residual.values.size()));
+}
+
+void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The message of the Error that read_container throws (fails the test if none).
+std::string read_error(const std::filesystem::path& path) {
+  try {
+    read_container(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "read_container accepted " << path;
+  return {};
+}
+
+// Rewrites the section checksums and the table checksum after a test changed section contents,
+// so that only the meaning of the contents is wrong.
+void fix_checksums(std::string& bytes, const ContainerLayout& layout) {
+  const std::size_t table = 16;
+  for (std::size_t s = 0; s < layout.sections.size(); ++s) {
+    const ContainerSection& section = layout.sections[s];
+    const std::uint32_t crc = crc32(bytes.data() + section.offset, section.bytes);
+    ByteWriter encoded;
+    encoded.u32(crc);
+    bytes.replace(table + 40 * s + 32, 4, encoded.data());
+  }
+  const std::size_t table_end = table + 40 * layout.sections.size();
+  ByteWriter encoded;
+  encoded.u32(crc32(bytes.data(), table_end));
+  bytes.replace(table_end, 4, encoded.data());
+}
+
+TEST(Crc32, MatchesTheStandardCheckValue) {
+  EXPECT_EQ(crc32(std::string_view("123456789")), 0xCBF43926u);
+  EXPECT_EQ(crc32(std::string_view("")), 0u);
+  EXPECT_EQ(crc32(std::string_view("6789"), crc32(std::string_view("12345"))), 0xCBF43926u);
+}
+
+TEST(Container, Float32RoundTripIsBitExact) {
+  TempDir dir;
+  CompressedField field = sample_field();
+  ASSERT_GT(field.stored_rows(), 0u);
+  ASSERT_LT(field.stored_rows(), std::size_t(field.functions()));
+  ContainerOptions options;
+  options.parameters_json = R"({"residual": 5, "method": "lp-dual", "lambda": 0.25})";
+  write_container(dir / "a.relume", field, options);
+  ContainerOptions stored;
+  const CompressedField back = read_container(dir / "a.relume", &stored);
+  expect_identical(field, back);
+  EXPECT_EQ(stored.weights, ValuePrecision::float32);
+  EXPECT_EQ(stored.residual, ValuePrecision::float32);
+  EXPECT_EQ(stored.light_index, IndexWidth::bits8);  // 10 lights fit 8 bits
+  EXPECT_EQ(nlohmann::json::parse(stored.parameters_json),
+            nlohmann::json::parse(options.parameters_json));
+}
+
+TEST(Container, HaarTransformAndOneChannelRoundTrip) {
+  TempDir dir;
+  RandomFieldShape shape;
+  shape.width = 4;
+  shape.height = 3;
+  shape.channels = 1;
+  shape.lights = 7;
+  shape.clusters = 1;
+  shape.terms = 1;
+  shape.residual_per_function = 7;
+  CompressedField field = random_compressed_field(shape);
+  field.transform = BasisTransform::haar;
+  write_container(dir / "h.relume", field);
+  expect_identical(field, read_container(dir / "h.relume"));
+}
+
+TEST(Container, HalfPrecisionRoundTripIsWithinHalfPrecision) {
+  TempDir dir;
+  const CompressedField field = sample_field();
+  ContainerOptions options;
+  options.weights = ValuePrecision::float16;
+  options.residual = ValuePrecision::float16;
+  write_container(dir / "h.relume", field, options);
+  ContainerOptions stored;
+  const CompressedField back = read_container(dir / "h.relume", &stored);
+  EXPECT_EQ(stored.weights, ValuePrecision::float16);
+  EXPECT_EQ(stored.residual, ValuePrecision::float16);
+  // Exactly what quantize_for_container predicts; bases and everything else stay exact.
+  expect_identical(quantize_for_container(field, options), back);
+  // Half has an 11-bit significand: relative rounding error <= 2^-11 for normal values, absolute
+  // <= 2^-25 in the subnormal range.
+  const double relative = std::ldexp(1.0, -11), absolute = std::ldexp(1.0, -25);
+  int changed = 0;
+  for (Eigen::Index i = 0; i < field.weights.size(); ++i) {
+    const float x = field.weights.data()[i], q = back.weights.data()[i];
+    EXPECT_LE(std::abs(x - q), std::abs(x) * relative + absolute) << "weight " << i;
+    changed += x != q;
+  }
+  for (std::size_t k = 0; k < field.residual.values.size(); ++k) {
+    const float x = field.residual.values[k], q = back.residual.values[k];
+    EXPECT_LE(std::abs(x - q), std::abs(x) * relative + absolute) << "residual " << k;
+    changed += x != q;
+  }
+  EXPECT_GT(changed, 0);  // the values really went through half
+  // Half values take 2 bytes.
+  const ContainerLayout layout = describe_container(dir / "h.relume");
+  EXPECT_EQ(layout.section("weights").bytes, field.stored_rows() * field.terms * 2);
+  EXPECT_EQ(layout.section("residual_values").bytes, field.residual.nonzeros() * 2);
+}
+
+TEST(Container, QuantizationErrorIsZeroForFloat32AndSmallForHalf) {
+  const CompressedField field = sample_field();
+  const RelativeError exact = quantization_error(field, {});
+  EXPECT_EQ(exact.mean, 0.0);
+  EXPECT_EQ(exact.functions_averaged, std::int64_t(field.stored_rows()));
+  ContainerOptions half;
+  half.weights = ValuePrecision::float16;
+  half.residual = ValuePrecision::float16;
+  const RelativeError rounded = quantization_error(field, half);
+  EXPECT_GT(rounded.mean, 0.0);
+  // Squared relative error of values rounded to 11 significant bits: below (2^-11)^2 ~ 2.4e-7.
+  EXPECT_LT(rounded.mean, 2.4e-7);
+}
+
+TEST(Container, HalfPrecisionRefusesValuesBeyondItsRange) {
+  TempDir dir;
+  CompressedField field = sample_field();
+  field.weights(1, 0) = 1.0e5f;
+  ContainerOptions options;
+  options.weights = ValuePrecision::float16;
+  try {
+    write_container(dir / "big.relume", field, options);
+    FAIL() << "a weight of 1e5 was stored as half";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("stored row 1 term 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("65504"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "big.relume"));
+  write_container(dir / "big.relume", field);  // float32 holds it
+  EXPECT_EQ(read_container(dir / "big.relume").weights(1, 0), 1.0e5f);
+}
+
+TEST(Container, LightIndexWidthIsTheSmallestThatFitsOrAsAsked) {
+  EXPECT_EQ(resolve_light_index_width(IndexWidth::automatic, 256), IndexWidth::bits8);
+  EXPECT_EQ(resolve_light_index_width(IndexWidth::automatic, 257), IndexWidth::bits16);
+  EXPECT_EQ(resolve_light_index_width(IndexWidth::automatic, 65536), IndexWidth::bits16);
+  EXPECT_EQ(resolve_light_index_width(IndexWidth::automatic, 65537), IndexWidth::bits32);
+  EXPECT_EQ(resolve_light_index_width(IndexWidth::bits32, 10), IndexWidth::bits32);
+  EXPECT_THROW(resolve_light_index_width(IndexWidth::bits8, 257), Error);
+  EXPECT_THROW(resolve_light_index_width(IndexWidth::bits16, 65537), Error);
+
+  TempDir dir;
+  const CompressedField field = sample_field(3, 300);
+  const std::size_t nnz = field.residual.nonzeros();
+  ASSERT_GT(nnz, 0u);
+  EXPECT_EQ(plan_container(field).section("residual_indices").bytes, nnz * 2);
+  ContainerOptions wide;
+  wide.light_index = IndexWidth::bits32;
+  write_container(dir / "wide.relume", field, wide);
+  EXPECT_EQ(describe_container(dir / "wide.relume").section("residual_indices").bytes, nnz * 4);
+  ContainerOptions stored;
+  expect_identical(field, read_container(dir / "wide.relume", &stored));
+  EXPECT_EQ(stored.light_index, IndexWidth::bits32);
+  ContainerOptions narrow;
+  narrow.light_index = IndexWidth::bits8;
+  EXPECT_THROW(write_container(dir / "narrow.relume", field, narrow), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir / "narrow.relume"));
+}
+
+TEST(Container, PlanMatchesTheWrittenFileAndCountsStoredBytes) {
+  TempDir dir;
+  const CompressedField field = sample_field();
+  const ContainerLayout planned = plan_container(field);
+  write_container(dir / "a.relume", field);
+  const ContainerLayout written = describe_container(dir / "a.relume");
+  EXPECT_EQ(planned.file_bytes, std::filesystem::file_size(dir / "a.relume"));
+  EXPECT_EQ(written.file_bytes, planned.file_bytes);
+  EXPECT_EQ(written.version, container_format_version);
+  ASSERT_EQ(written.sections.size(), planned.sections.size());
+  std::uint64_t total = written.preamble_bytes;
+  for (std::size_t s = 0; s < written.sections.size(); ++s) {
+    EXPECT_EQ(written.sections[s].name, planned.sections[s].name);
+    EXPECT_EQ(written.sections[s].offset, planned.sections[s].offset);
+    EXPECT_EQ(written.sections[s].bytes, planned.sections[s].bytes);
+    EXPECT_EQ(written.sections[s].crc32, planned.sections[s].crc32);
+    total += written.sections[s].bytes;
+  }
+  EXPECT_EQ(total, written.file_bytes);
+  const std::size_t rows = field.stored_rows();
+  EXPECT_EQ(written.section("lights").bytes, std::uint64_t(field.lights) * 6 * 4);
+  EXPECT_EQ(written.section("clusters").bytes, rows);  // 3 clusters: one byte each
+  EXPECT_EQ(written.section("bases").bytes, std::uint64_t(3 * 2 * 10 * 4));
+  EXPECT_EQ(written.section("weights").bytes, rows * 2 * 4);
+  EXPECT_EQ(written.section("residual_offsets").bytes, rows);  // rows of <= 5 entries: u8 lengths
+  EXPECT_EQ(written.section("residual_indices").bytes, field.residual.nonzeros());
+  EXPECT_EQ(written.section("residual_values").bytes, field.residual.nonzeros() * 4);
+}
+
+TEST(Container, MaskAndFunctionsUseTheSmallerOfBitmapAndRuns) {
+  TempDir dir;
+  // A scattered mask (bitmap is smaller) and a solid block of stored functions (runs are smaller).
+  RandomFieldShape shape;
+  shape.width = 64;
+  shape.height = 64;
+  shape.channels = 1;
+  shape.lights = 4;
+  shape.clusters = 2;
+  shape.terms = 1;
+  shape.residual_per_function = 1;
+  CompressedField field = random_compressed_field(shape);
+  for (std::size_t q = 0; q < field.mask.size(); ++q) field.mask[q] = (q * 7919 % 13) < 6;
+  write_container(dir / "a.relume", field);
+  const std::string bytes = read_file(dir / "a.relume");
+  const ContainerLayout layout = describe_container(dir / "a.relume");
+  EXPECT_EQ(bytes[layout.section("mask").offset], 0);  // bitmap
+  EXPECT_EQ(layout.section("mask").bytes, 1 + 64u * 64 / 8);
+  EXPECT_EQ(bytes[layout.section("functions").offset], 1);  // runs: 0 absent, 4096 present
+  EXPECT_EQ(layout.section("functions").bytes, 1u + 1 + 2);
+  expect_identical(field, read_container(dir / "a.relume"));
+
+  // And the other way round: a solid mask, scattered functions.
+  std::fill(field.mask.begin(), field.mask.end(), 1);
+  std::vector<std::size_t> keep;
+  for (std::size_t r = 0; r < field.stored_rows(); ++r)
+    if (r % 3 != 1) keep.push_back(r);
+  CompressedField sparse = field;
+  sparse.stored_function.clear();
+  sparse.cluster.clear();
+  sparse.weights.resize(Eigen::Index(keep.size()), 1);
+  sparse.residual = {};
+  sparse.residual.row_offsets.push_back(0);
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    const std::size_t r = keep[i];
+    sparse.stored_function.push_back(field.stored_function[r]);
+    sparse.cluster.push_back(field.cluster[r]);
+    sparse.weights(Eigen::Index(i), 0) = field.weights(Eigen::Index(r), 0);
+    for (std::uint32_t k = field.residual.row_offsets[r]; k < field.residual.row_offsets[r + 1];
+         ++k) {
+      sparse.residual.light_index.push_back(field.residual.light_index[k]);
+      sparse.residual.values.push_back(field.residual.values[k]);
+    }
+    sparse.residual.row_offsets.push_back(std::uint32_t(sparse.residual.values.size()));
+  }
+  write_container(dir / "b.relume", sparse);
+  const std::string sparse_bytes = read_file(dir / "b.relume");
+  const ContainerLayout sparse_layout = describe_container(dir / "b.relume");
+  EXPECT_EQ(sparse_bytes[sparse_layout.section("mask").offset], 1);       // runs
+  EXPECT_EQ(sparse_bytes[sparse_layout.section("functions").offset], 0);  // bitmap
+  expect_identical(sparse, read_container(dir / "b.relume"));
+}
+
+TEST(Container, AnAlteredByteInAnySectionIsRefusedNamingTheSection) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  write_container(path, sample_field());
+  const std::string original = read_file(path);
+  const ContainerLayout layout = describe_container(path);
+  ASSERT_EQ(layout.sections.size(), 10u);
+  for (const ContainerSection& section : layout.sections) {
+    ASSERT_GT(section.bytes, 0u) << section.name;
+    std::string altered = original;
+    altered[section.offset + section.bytes / 2] ^= 0x5A;
+    write_bytes(path, altered);
+    const std::string message = read_error(path);
+    EXPECT_NE(message.find("section '" + section.name + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find("corrupt"), std::string::npos) << message;
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_THROW(describe_container(path), Error);
+  }
+  // A byte of the section table itself (the 'bases' entry's size).
+  std::string altered = original;
+  altered[16 + 40 * 5 + 24] ^= 0x01;
+  write_bytes(path, altered);
+  const std::string message = read_error(path);
+  EXPECT_NE(message.find("section table is corrupt"), std::string::npos) << message;
+}
+
+TEST(Container, ATruncatedFileIsRefusedNamingTheSection) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  write_container(path, sample_field());
+  const std::string original = read_file(path);
+  const ContainerLayout layout = describe_container(path);
+  for (const ContainerSection& section : layout.sections) {
+    write_bytes(path, original.substr(0, section.offset + section.bytes / 2));
+    const std::string message = read_error(path);
+    EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+    EXPECT_NE(message.find("section '" + section.name + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  }
+  for (std::size_t length : {std::size_t(10), std::size_t(100)}) {
+    write_bytes(path, original.substr(0, length));
+    const std::string message = read_error(path);
+    EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+  }
+  write_bytes(path, original + "extra");
+  EXPECT_NE(read_error(path).find("5 unexpected bytes after its last section"), std::string::npos);
+}
+
+TEST(Container, ForeignFilesWrongMagicAndVersionsGetClearErrors) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  write_container(path, sample_field());
+  const std::string original = read_file(path);
+
+  std::string wrong_magic = original;
+  wrong_magic[3] = 'X';
+  write_bytes(path, wrong_magic);
+  std::string message = read_error(path);
+  EXPECT_NE(message.find(path.string() + " is not a relume container"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("magic"), std::string::npos) << message;
+
+  std::string version = original;
+  version[8] = 2;
+  write_bytes(path, version);
+  message = read_error(path);
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("version 2 is not supported"), std::string::npos) << message;
+
+  const auto text = dir / "notes.relume";
+  write_bytes(text, "width 6 height 5\n");
+  message = read_error(text);
+  EXPECT_NE(message.find(text.string() + " is not a relume container"), std::string::npos)
+      << message;
+
+  const auto png = dir / "image.png";
+  write_image(png, Image(4, 4, 3));
+  message = read_error(png);
+  EXPECT_NE(message.find(png.string() + " is not a relume container"), std::string::npos)
+      << message;
+
+  const auto empty = dir / "empty.relume";
+  write_bytes(empty, "");
+  message = read_error(empty);
+  EXPECT_NE(message.find(empty.string() + " is empty"), std::string::npos) << message;
+
+  message = read_error(dir / "missing.relume");
+  EXPECT_NE(message.find("container not found: " + (dir / "missing.relume").string()),
+            std::string::npos)
+      << message;
+  message = read_error(dir.path());
+  EXPECT_NE(message.find("is not a relume container"), std::string::npos) << message;
+}
+
+TEST(Container, ContentsThatContradictTheHeaderAreRefusedNamingTheSection) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  const CompressedField field = sample_field();
+  write_container(path, field);
+  const std::string original = read_file(path);
+  const ContainerLayout layout = describe_container(path);
+
+  auto expect_refused = [&](std::string bytes, const std::string& section,
+                            const std::string& what) {
+    fix_checksums(bytes, layout);
+    write_bytes(path, bytes);
+    const std::string message = read_error(path);
+    EXPECT_NE(message.find("section '" + section + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  };
+  std::string bytes = original;
+  bytes[layout.section("residual_indices").offset] = 10;  // light 10 of 10
+  expect_refused(bytes, "residual_indices", "expected < 10 lights");
+
+  bytes = original;
+  bytes[layout.section("clusters").offset + 2] = 3;  // cluster 3 of 3
+  expect_refused(bytes, "clusters", "expected < 3 clusters");
+
+  bytes = original;
+  const std::size_t lengths = layout.section("residual_offsets").offset;
+  ++bytes[lengths];  // one more entry than the header's residual_nonzeros
+  expect_refused(bytes, "residual_offsets", "residual entries");
+
+  bytes = original;
+  ByteWriter nan;
+  nan.f32(std::nanf(""));
+  bytes.replace(layout.section("bases").offset + 8, 4, nan.data());
+  expect_refused(bytes, "bases", "expected finite");
+
+  bytes = original;
+  const std::size_t header = layout.section("header").offset;
+  const std::size_t lights_key = bytes.find("\"lights\":10", header);
+  ASSERT_NE(lights_key, std::string::npos);
+  bytes[lights_key + 10] = '9';  // "lights":19: the lights section is now the wrong size
+  expect_refused(bytes, "lights", "the header implies");
+
+  // More stored rows than the per-row sections hold: refused by their sizes, before the functions
+  // set is decoded (the sizes bound what a crafted header can make the reader allocate).
+  bytes = original;
+  const std::size_t rows_key = bytes.find("\"stored_rows\":", header);
+  ASSERT_NE(rows_key, std::string::npos);
+  ASSERT_TRUE(field.stored_rows() >= 10 && field.stored_rows() < 89)
+      << "the edit below assumes a two-digit row count";
+  bytes.replace(rows_key + 14, 2, "89");
+  expect_refused(bytes, "clusters", "the header implies");
+}
+
+TEST(Container, WriteRefusesInconsistentFieldsAndLeavesNoFile) {
+  TempDir dir;
+  const auto path = dir / "bad.relume";
+  auto expect_refused = [&](const CompressedField& field, const std::string& what,
+                            const ContainerOptions& options = {}) {
+    try {
+      write_container(path, field, options);
+      ADD_FAILURE() << "wrote a field with " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+  };
+  CompressedField field = sample_field();
+  field.cluster[2] = 3;
+  expect_refused(field, "stored row 2 has cluster id 3");
+
+  field = sample_field();
+  std::size_t row = 0;
+  while (field.residual.row_offsets[row + 1] - field.residual.row_offsets[row] < 2) ++row;
+  std::swap(field.residual.values[field.residual.row_offsets[row]],
+            field.residual.values[field.residual.row_offsets[row] + 1]);
+  expect_refused(field, "not sorted by |value| descending");
+
+  field = sample_field();
+  field.residual.light_index[field.residual.row_offsets[row] + 1] =
+      field.residual.light_index[field.residual.row_offsets[row]];
+  expect_refused(field, "two residual entries at light");
+
+  field = sample_field();
+  std::swap(field.stored_function[0], field.stored_function[1]);
+  expect_refused(field, "strictly ascending");
+
+  field = sample_field();
+  field.mask.pop_back();
+  expect_refused(field, "the mask has 29 entries");
+
+  field = sample_field();
+  field.weights(0, 1) = INFINITY;
+  expect_refused(field, "weight of stored row 0 term 1 is inf");
+
+  ContainerOptions options;
+  options.parameters_json = "[1, 2]";
+  expect_refused(sample_field(), "must be a JSON object", options);
+  options.parameters_json = "{oops";
+  expect_refused(sample_field(), "not valid JSON", options);
+}
+
+TEST(Container, AFailedWriteLeavesTheOldFileInPlace) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  const CompressedField good = sample_field();
+  write_container(path, good);
+  CompressedField bad = good;
+  bad.cluster[0] = 99;
+  EXPECT_THROW(write_container(path, bad), Error);
+  expect_identical(good, read_container(path));
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().filename(), "a.relume");  // no temporary left behind
+}
+
+TEST(InfoCommand, PrintsDimensionsSectionsAndRatio) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  const CompressedField field = sample_field();
+  ContainerOptions options;
+  options.residual = ValuePrecision::float16;
+  options.parameters_json = R"({"clusters": 3, "method": "lp-dual"})";
+  write_container(path, field, options);
+  const std::uint64_t file_bytes = std::filesystem::file_size(path);
+
+  const auto text = testing::run_relume("info '" + path.string() + "'");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("6 x 5 pixels, 3 channels, 10 lights"), std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("residual_values"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("lp-dual"), std::string::npos) << text.output;
+
+  const auto json_run = testing::run_relume("info --json '" + path.string() + "'");
+  ASSERT_EQ(json_run.exit_code, 0) << json_run.output;
+  const nlohmann::json info = nlohmann::json::parse(json_run.output);
+  EXPECT_EQ(info["width"], 6);
+  EXPECT_EQ(info["height"], 5);
+  EXPECT_EQ(info["channels"], 3);
+  EXPECT_EQ(info["lights"], 10);
+  EXPECT_EQ(info["clusters"], 3);
+  EXPECT_EQ(info["terms"], 2);
+  EXPECT_EQ(info["stored_rows"], field.stored_rows());
+  EXPECT_EQ(info["residual_nonzeros"], field.residual.nonzeros());
+  EXPECT_EQ(info["residual_precision"], "float16");
+  EXPECT_EQ(info["light_index_bits"], 8);
+  EXPECT_EQ(info["parameters"]["method"], "lp-dual");
+  EXPECT_EQ(info["file_bytes"], file_bytes);
+  const std::uint64_t input_bytes = 6 * 5 * 3 * 10 * 4;
+  EXPECT_EQ(info["float32_input_bytes"], input_bytes);
+  EXPECT_DOUBLE_EQ(info["ratio_to_float32_input"].get<double>(), double(file_bytes) / input_bytes);
+  std::uint64_t section_total = 0;
+  for (const auto& section : info["sections"])
+    section_total += section["bytes"].get<std::uint64_t>();
+  EXPECT_EQ(section_total + info["preamble_bytes"].get<std::uint64_t>(), file_bytes);
+  EXPECT_EQ(info["sections"][9]["name"], "residual_values");
+  EXPECT_EQ(info["sections"][9]["bytes"], field.residual.nonzeros() * 2);
+
+  write_bytes(dir / "junk.relume", "junk");
+  const auto refused = testing::run_relume("info '" + (dir / "junk.relume").string() + "'");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.output.find("junk.relume is not a relume container"), std::string::npos)
+      << refused.output;
+}
+
+}  // namespace
+}  // namespace relume

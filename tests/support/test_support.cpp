@@ -1,0 +1,66 @@
+// Implementation of the test helpers.
+#include "support/test_support.hpp"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+#include "core/error.hpp"
+
+namespace relume::testing {
+namespace fs = std::filesystem;
+
+std::string shared_data_hint() {
+  const char* env = std::getenv("RELUME_DATA");
+  return env ? std::string(env) : std::string(RELUME_DEFAULT_DATA_DIR);
+}
+
+std::optional<fs::path> shared_data_dir() {
+  const fs::path dir = shared_data_hint();
+  if (fs::is_directory(dir / "olat") && fs::is_directory(dir / "envmaps")) return dir;
+  return std::nullopt;
+}
+
+TempDir::TempDir() {
+  std::random_device device;
+  path_ = fs::temp_directory_path() / ("relume-test-" + std::to_string(device()));
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+}
+
+std::string error_message(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no relume::Error thrown)";
+}
+
+CommandResult run_command(const std::string& command) {
+  CommandResult result;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) {
+    result.exit_code = -1;
+    return result;
+  }
+  std::array<char, 4096> buffer{};
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+    result.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+CommandResult run_relume(const std::string& arguments) {
+  return run_command(std::string("RELUME_QUIET=1 '") + RELUME_BINARY + "' " + arguments);
+}
+
+}  // namespace relume::testing
