@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.hpp"
 #include "command_registry.hpp"
+#include "json_report.hpp"
 #include "image/image_difference.hpp"
-#include "image/image_io.hpp"
+#include <relume/image.hpp>
 
 namespace relume {
 namespace {
@@ -36,7 +36,7 @@ void run_compare(const CompareOptions& options) {
       {"max_at", {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}}},
       {"negative_values", d.negative_values},
       {"values", d.values}};
-  write_file_atomically(options.json, report.dump(2) + "\n");
+  write_json_report(options.json, report);
 }
 
 const CommandRegistration registration{

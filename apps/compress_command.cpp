@@ -10,16 +10,17 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.hpp"
 #include "compress/checkpoint.hpp"
 #include "compress/clustered_factorization.hpp"
 #include "command_registry.hpp"
+#include "json_report.hpp"
+#include "core/console.hpp"
 #include "compress/compression_report.hpp"
 #include "compress/compression_target.hpp"
 #include "container/container.hpp"
 #include "core/elapsed_time.hpp"
-#include "core/error.hpp"
-#include "field/field_io.hpp"
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include "compress/opencl_assignment.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
@@ -44,7 +45,6 @@ struct CompressArguments {
   double target_error = 0;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
-  bool quiet = false;
   CompressionOptions options;
 };
 
@@ -64,17 +64,6 @@ std::string fingerprint(const std::string& input, const CompressionOptions& opti
       .dump();
 }
 
-// The OpenCL assignment on --device, with PoCL's threads capped by --threads like the CPU work.
-std::unique_ptr<OpenClAssigner> make_assigner(const std::string& device,
-                                              const ClusteringOptions& clustering) {
-  if (clustering.threads > 0) limit_cpu_driver_threads(clustering.threads);
-  try {
-    return std::make_unique<OpenClAssigner>(device, clustering.weight_fit);
-  } catch (const Error& error) {
-    throw Error(std::string(error.what()) + " (--assign cpu runs the assignment without OpenCL)");
-  }
-}
-
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -87,19 +76,16 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   load.threads = options.clustering.threads;
   const ReflectanceField field = load_field(input, load);
   const double load_seconds = seconds_since(start);
-  if (!options.clustering.quiet)
-    std::fprintf(stderr, "compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s\n",
-                 input.c_str(), field.width, field.height, field.channels, field.lights(),
-                 load_seconds);
+  note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(),
+       field.width, field.height, field.channels, field.lights(), load_seconds);
 
   const fs::path checkpoint = output.string() + ".checkpoint";
   const std::string print = fingerprint(input, options);
   std::optional<ClusteringResume> resume;
   if (arguments.resume && fs::exists(checkpoint)) {
     resume = read_checkpoint(checkpoint, print);
-    if (!options.clustering.quiet)
-      std::fprintf(stderr, "compress: resuming from %s (%zu iterations done)\n",
-                   checkpoint.c_str(), resume->iterations.size());
+    note("compress: resuming from %s (%zu iterations done)", checkpoint.c_str(),
+         resume->iterations.size());
   }
   CompressionStats stats;
   const IterationHook hook = [&](const ClusterModel& model, const IterationRecord&) {
@@ -159,12 +145,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
          relative_error(field, compressed, true, all_residual_entries, run.threads).mean},
         {"quantization_error",
          relative_error(compressed, stored, all_residual_entries, run.threads).mean}};
-  std::printf("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
-              "%d clusters, %.1f s\n",
-              input.c_str(), output.c_str(),
-              static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-              report["ratio"].get<double>(), report["error_all"].get<double>(),
-              report["error_masked"].get<double>(), stats.clusters, run.total_seconds);
+  say("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
+      "%d clusters, %.1f s",
+      input.c_str(), output.c_str(),
+      static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
+      report["ratio"].get<double>(), report["error_all"].get<double>(),
+      report["error_masked"].get<double>(), stats.clusters, run.total_seconds);
+  for (const auto& [phase, seconds] : report["phases_seconds"].items())
+    detail("compress: %-22s %8.2f s", phase.c_str(), seconds.get<double>());
   return report;
 }
 
@@ -184,7 +172,7 @@ void run_compress(CompressArguments& arguments) {
   else if (arguments.transform != "identity")
     throw Error("--transform must be 'identity' or 'haar', got '" + arguments.transform + "'");
   if (arguments.solver != "irls") options.clustering.exact_refit = parse_l1_method(arguments.solver);
-  options.clustering.quiet = arguments.quiet || progress_quiet_by_environment();
+  options.clustering.quiet = verbosity() == Verbosity::quiet;
   if (arguments.irls_iterations < 0)
     throw Error("--irls-iterations must be >= 0, got " + std::to_string(arguments.irls_iterations));
   options.clustering.weight_fit.iterations = arguments.irls_iterations;
@@ -195,12 +183,11 @@ void run_compress(CompressArguments& arguments) {
 
   std::unique_ptr<OpenClAssigner> opencl;
   if (arguments.assign == "opencl")
-    opencl = make_assigner(arguments.device, options.clustering);
+    opencl = make_opencl_assigner(arguments.device, options.clustering);
   else if (arguments.assign != "cpu")
     throw Error("--assign must be 'cpu' or 'opencl', got '" + arguments.assign + "'");
-  if (!options.clustering.quiet)
-    std::fprintf(stderr, "compress: reassignment fits on %s\n",
-                 opencl ? opencl->device_label().c_str() : "the CPU (C++ path)");
+  note("compress: reassignment fits on %s",
+       opencl ? opencl->device_label().c_str() : "the CPU (C++ path)");
 
   const bool several = arguments.inputs.size() > 1;
   if (several) fs::create_directories(arguments.output);
@@ -222,7 +209,7 @@ void run_compress(CompressArguments& arguments) {
   if (!arguments.report.empty()) {
     const nlohmann::ordered_json document =
         several ? nlohmann::ordered_json{{"runs", reports}, {"failed", failures}} : reports[0];
-    write_file_atomically(arguments.report, document.dump(2) + "\n");
+    write_json_report(arguments.report, document);
   }
   if (!failures.empty())
     throw Error(std::to_string(failures.size()) + " of " + std::to_string(arguments.inputs.size()) +
@@ -300,7 +287,6 @@ const CommandRegistration registration{20, [](CLI::App& app) {
                       "relative error (paper Eq. 16, masked functions) with the fewest bytes");
   command->add_flag("--resume", arguments->resume,
                     "Continue from OUT.checkpoint, written after every clustering iteration");
-  command->add_flag("-q,--quiet", arguments->quiet, "No progress output");
   command->callback([arguments] { run_compress(*arguments); });
 }};
 

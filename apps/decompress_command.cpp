@@ -6,8 +6,9 @@
 #include <memory>
 
 #include "command_registry.hpp"
+#include "core/console.hpp"
 #include "container/container.hpp"
-#include "field/field_io.hpp"
+#include <relume/field.hpp>
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -27,9 +28,8 @@ void run_decompress(const DecompressOptions& options) {
       options.residual == all_residual_entries
           ? "complete"
           : "cut to " + std::to_string(options.residual) + " entries per function";
-  std::printf("wrote %s: %d x %d pixels, %d channels, %d lights, residual %s\n",
-              options.output.c_str(), field.width, field.height, field.channels, field.lights(),
-              residual.c_str());
+  say("wrote %s: %d x %d pixels, %d channels, %d lights, residual %s", options.output.c_str(),
+      field.width, field.height, field.channels, field.lights(), residual.c_str());
 }
 
 const CommandRegistration registration{

@@ -6,7 +6,8 @@
 #include <optional>
 
 #include "command_registry.hpp"
-#include "core/error.hpp"
+#include "core/console.hpp"
+#include <relume/error.hpp>
 #include "l1/factorization.hpp"
 #include "field/npy.hpp"
 #include "core/progress.hpp"
@@ -38,25 +39,23 @@ void run_factor(FactorCommandOptions options) {
   if (R.size() == 0)
     throw Error(options.input + ": the matrix is empty (" + std::to_string(R.rows()) + " x " +
                 std::to_string(R.cols()) + "); nothing to factor");
-  std::printf("factoring %s: %lld x %lld, %d terms, solver %s, init %s\n", options.input.c_str(),
-              static_cast<long long>(R.rows()), static_cast<long long>(R.cols()), options.terms,
-              options.solver.c_str(), options.init.c_str());
+  note("factoring %s: %lld x %lld, %d terms, solver %s, init %s", options.input.c_str(),
+       static_cast<long long>(R.rows()), static_cast<long long>(R.cols()), options.terms,
+       options.solver.c_str(), options.init.c_str());
   ProgressReporter progress("factor (iterations, up to the cap)",
                             static_cast<std::uint64_t>(options.factorization.max_iterations));
   const auto start = std::chrono::steady_clock::now();
   options.factorization.on_iteration = [&](int iteration, double objective) {
     progress.advance();
-    std::printf("iteration %d: L1 objective %.10g\n", iteration, objective);
-    std::fflush(stdout);
+    say("iteration %d: L1 objective %.10g", iteration, objective);
   };
   const L1Factorization result = factorize_l1(R, options.terms, options.factorization);
   progress.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto nonzeros = (result.E.array() != 0).count();
-  std::printf(
-      "L1 objective %.10g after %zu iterations in %.2f s; residual non-zeros %lld of %lld "
-      "(%.2f%%)\n",
+  say("L1 objective %.10g after %zu iterations in %.2f s; residual non-zeros %lld of %lld "
+      "(%.2f%%)",
       result.E.lpNorm<1>(), result.objective_per_iteration.size(), seconds,
       static_cast<long long>(nonzeros), static_cast<long long>(R.size()),
       100.0 * double(nonzeros) / double(R.size()));
@@ -65,8 +64,8 @@ void run_factor(FactorCommandOptions options) {
         std::pair{"_E.npy", &result.E}}) {
     const std::string path = options.output_prefix + suffix;
     write_npy_matrix(path, *matrix, input.dtype);
-    std::printf("wrote %s (%lld x %lld)\n", path.c_str(), static_cast<long long>(matrix->rows()),
-                static_cast<long long>(matrix->cols()));
+    say("wrote %s (%lld x %lld)", path.c_str(), static_cast<long long>(matrix->rows()),
+        static_cast<long long>(matrix->cols()));
   }
 }
 

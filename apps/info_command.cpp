@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.hpp"
+#include "json_report.hpp"
 #include "container/container.hpp"
 
 namespace relume {
@@ -40,6 +41,7 @@ nlohmann::ordered_json describe(const std::string& input) {
       {"residual_precision", to_string(stored.residual)},
       {"light_index_bits", index_width_bits(stored.light_index)},
       {"parameters", nlohmann::ordered_json::parse(stored.parameters_json)},
+      {"written_by", stored.written_by},
       {"preamble_bytes", layout.preamble_bytes},
       {"sections", nlohmann::ordered_json::array()},
       {"file_bytes", layout.file_bytes},
@@ -75,6 +77,8 @@ void print_text(const nlohmann::ordered_json& info) {
               info["residual_precision"].get<std::string>().c_str(),
               info["light_index_bits"].get<int>());
   std::printf("parameters: %s\n", info["parameters"].dump().c_str());
+  if (!info["written_by"].get<std::string>().empty())
+    std::printf("written by: %s\n", info["written_by"].get<std::string>().c_str());
   std::printf("sections:   %-18s %12s %12s %7s\n", "name", "offset", "bytes", "share");
   auto row = [&](const std::string& name, std::uint64_t offset, std::uint64_t bytes) {
     std::printf("            %-18s %12llu %12llu %6.2f%%\n", name.c_str(),

@@ -4,9 +4,11 @@
 #include <cstdio>
 
 #include "lighting/environment_map.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "field/light_file.hpp"
-#include "lighting/light_vector.hpp"
+#include <relume/lighting.hpp>
+
+#include "core/console.hpp"
 
 namespace relume {
 
@@ -34,7 +36,7 @@ LightRgb resolve_light_vector(const LightSourceOptions& options, const LightDire
     const EnvironmentMap map =
         load_environment_map(options.environment, parse_layout_option(options.layout));
     LightVector vector = integrate_light_vector(map, directions, options.rotate_degrees);
-    std::fprintf(stderr, "%s: %s\n", options.environment.c_str(), describe_coverage(vector).c_str());
+    note("%s: %s", options.environment.c_str(), describe_coverage(vector).c_str());
     return vector.rgb;
   }
   LightRgb lights = read_rgb_rows(options.lights_file, "light vector");

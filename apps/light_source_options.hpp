@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 
 namespace relume {
 

@@ -6,9 +6,10 @@
 #include <memory>
 
 #include "command_registry.hpp"
+#include "core/console.hpp"
 #include "lighting/environment_map.hpp"
 #include "field/light_file.hpp"
-#include "lighting/light_vector.hpp"
+#include <relume/lighting.hpp>
 
 namespace relume {
 namespace {
@@ -50,7 +51,7 @@ void run_lights(const LightsOptions& options) {
                               " lights: " + describe_coverage(vector) + negative_value_note(map);
   if (options.output.empty()) {
     // Rows on stdout (for pipes), the summary on stderr.
-    std::fprintf(stderr, "%s\n", summary.c_str());
+    note("%s", summary.c_str());
     for (Eigen::Index i = 0; i < vector.rgb.rows(); ++i)
       std::printf("%.9g %.9g %.9g\n", vector.rgb(i, 0), vector.rgb(i, 1), vector.rgb(i, 2));
     return;
@@ -58,7 +59,7 @@ void run_lights(const LightsOptions& options) {
   write_rgb_rows(options.output, vector.rgb,
                  "light vector of " + map.name + " for " + options.directions + ", rotated " +
                      std::to_string(options.rotate_degrees) + " degrees about +y");
-  std::printf("%s\nwrote %s\n", summary.c_str(), options.output.c_str());
+  say("%s\nwrote %s", summary.c_str(), options.output.c_str());
 }
 
 const CommandRegistration registration{

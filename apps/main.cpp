@@ -1,29 +1,120 @@
-// Entry point of the `relume` command: builds the CLI from the registered subcommands, runs the
-// chosen one, and turns every relume::Error into a one-line message and exit status 1.
+// Entry point of the `relume` command: builds the CLI from the registered subcommands, handles
+// the front door (--version, `relume help CMD`, unknown commands, the global -q/-v), runs the
+// chosen command and turns every failure into a one-line `relume:` message and an exit status:
+//   0  success
+//   1  an error in the input or the work (a relume::Error, a failed allocation, ...)
+//   2  a usage error (unknown command or option, bad option value)
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <relume/error.hpp>
+#include <relume/version.hpp>
+#include <string>
+#include <vector>
 
 #include "command_registry.hpp"
-#include "core/error.hpp"
+#include "command_suggestion.hpp"
+#include "core/console.hpp"
+#include "core/elapsed_time.hpp"
+
+namespace {
+
+constexpr int exit_usage = 2;
+
+std::vector<std::string> command_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
+  return names;
+}
+
+// The first argument that is not an option: the command's name, or "" when there is none.
+std::string first_word(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (argv[i][0] != '-') return argv[i];
+  return "";
+}
+
+// `relume help [CMD]`: the help of the whole command or of one subcommand.
+int print_help(CLI::App& app, int argc, char** argv) {
+  std::string name;
+  for (int i = 1; i < argc; ++i)
+    if (argv[i][0] != '-' && std::string(argv[i]) != "help") {
+      name = argv[i];
+      break;
+    }
+  if (name.empty()) {
+    std::printf("%s", app.help().c_str());
+    return 0;
+  }
+  try {
+    std::printf("%s", app.get_subcommand(name)->help("relume").c_str());
+    return 0;
+  } catch (const CLI::OptionNotFound&) {
+    std::fprintf(stderr, "relume: %s\n", relume::unknown_command_message(name, command_names(app)).c_str());
+    return exit_usage;
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
       "relume: compress one-light-at-a-time reflectance fields with clustered sparse residual\n"
-      "factorization and relight them in real time with OpenCL (PoCL on CPUs, any GPU driver)."};
+      "factorization and relight them in real time with OpenCL (PoCL on CPUs, any GPU driver).\n"
+      "Example: relume synth -o scene && relume compress scene -o scene.relume &&\n"
+      "         relume relight scene.relume --env sky.exr -o relit.png\n"
+      "Run `relume help COMMAND` for a command's options. Exit status: 0 success, 1 error in the\n"
+      "input or the work, 2 usage error.",
+      "relume"};
   app.require_subcommand(1);
+  app.fallthrough();  // the global flags also work after the command's name
   app.set_help_all_flag("--help-all", "Show help for every command");
+  app.set_version_flag("--version", relume::version_line(), "Print the version and git commit");
+  // Flag callbacks run before the command's callback, so the command sees the verbosity.
+  auto* quiet = app.add_flag_callback(
+      "-q,--quiet", [] { relume::set_verbosity(relume::Verbosity::quiet); },
+      "Print only errors and the results asked for: no progress, notes or summaries "
+      "(RELUME_QUIET=1 silences only the progress bars)");
+  app.add_flag_callback(
+         "-v,--verbose",
+         [] {
+           relume::set_verbosity(relume::Verbosity::verbose);
+           relume::detail("%s", relume::version_line().c_str());
+         },
+         "Also print settings as resolved and timings")
+      ->excludes(quiet);
   for (const auto& setup : relume::registered_commands()) setup(app);
+
+  const std::string word = first_word(argc, argv);
+  if (word == "help") return print_help(app, argc, argv);
+  if (argc == 1) {
+    std::printf("%s", app.help().c_str());
+    return exit_usage;
+  }
+  const std::vector<std::string> names = command_names(app);
+  if (!word.empty() && std::find(names.begin(), names.end(), word) == names.end()) {
+    std::fprintf(stderr, "relume: %s\n", relume::unknown_command_message(word, names).c_str());
+    return exit_usage;
+  }
+
+  const auto start = relume::Clock::now();
   try {
     app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --help-all, --version
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    std::fprintf(stderr, "relume: %s\n", e.what());
+    std::fprintf(stderr, "Run `relume help%s%s` for the options.\n", word.empty() ? "" : " ",
+                 word.c_str());
+    return exit_usage;
   } catch (const relume::Error& e) {
     std::fprintf(stderr, "relume: error: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relume: internal error: %s\n", e.what());
-    return 2;
+    return 1;
   }
+  relume::detail("relume: %s done in %.2f s", word.c_str(), relume::seconds_since(start));
   return 0;
 }

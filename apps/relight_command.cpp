@@ -5,11 +5,12 @@
 #include <filesystem>
 
 #include "command_registry.hpp"
-#include "compressed_renderer.hpp"
+#include "core/console.hpp"
+#include "renderer_options.hpp"
 #include "container/container.hpp"
-#include "field/field_io.hpp"
-#include "relight/field_relight.hpp"
-#include "image/image_io.hpp"
+#include <relume/field.hpp>
+#include <relume/relight.hpp>
+#include <relume/image.hpp>
 #include "light_source_options.hpp"
 
 namespace relume {
@@ -28,8 +29,13 @@ struct RelightOptions {
 void relight_container(const RelightOptions& options) {
   const CompressedField field = read_container(options.input);
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
-  CompressedRenderer renderer(field, options.renderer);
-  write_image(options.output, renderer.render({lights}).front(), {options.exposure});
+  Relighter renderer(field, options.renderer.relighter);
+  const int cap = residual_cap(options.renderer, field.lights);
+  const Image image = renderer.relight(lights, cap);
+  detail("relight: %s, residual cap %s, kernels %.2f ms", renderer.device_name().c_str(),
+         cap == full_residual ? "all" : std::to_string(cap).c_str(),
+         1e3 * renderer.last_kernel_seconds());
+  write_image(options.output, image, {options.exposure});
 }
 
 void run_relight(const RelightOptions& options) {

@@ -10,16 +10,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.hpp"
 #include "command_registry.hpp"
+#include "json_report.hpp"
+#include "core/console.hpp"
 #include "relight/compressed_relight_reference.hpp"
-#include "compressed_renderer.hpp"
+#include "renderer_options.hpp"
 #include "container/container.hpp"
 #include "lighting/environment_map.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "image/image_difference.hpp"
-#include "image/image_io.hpp"
-#include "lighting/light_vector.hpp"
+#include <relume/image.hpp>
+#include <relume/lighting.hpp>
 #include "core/progress.hpp"
 
 namespace relume {
@@ -93,8 +94,8 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
                                          field.directions);
   for (int frame = 0; frame < options.frames; ++frame)
     lights.push_back(integrator.integrate(options.rotate_start + frame * options.rotate_step).rgb);
-  std::fprintf(stderr, "%s: %s\n", options.environment.c_str(),
-               describe_coverage(integrator.integrate(options.rotate_start)).c_str());
+  note("%s: %s", options.environment.c_str(),
+       describe_coverage(integrator.integrate(options.rotate_start)).c_str());
   return lights;
 }
 
@@ -103,28 +104,29 @@ void run_sequence(const SequenceOptions& options) {
   if (options.batch < 1) throw Error("--batch must be at least 1");
   const CompressedField field = read_container(options.input);
   const std::vector<LightRgb> lights = frame_lights(options, field);
-  CompressedRenderer renderer(field, options.renderer);
+  Relighter renderer(field, options.renderer.relighter);
+  const int cap = residual_cap(options.renderer, field.lights);
   const fs::path folder = fs::path(frame_path(options.output_pattern, 0)).parent_path();
   if (!folder.empty()) fs::create_directories(folder);
 
   using clock = std::chrono::steady_clock;
   double relight_seconds = 0, kernel_seconds = 0, kernel_bytes = 0;
-  nlohmann::json frames = nlohmann::json::array();
+  nlohmann::ordered_json frames = nlohmann::ordered_json::array();
   ProgressReporter progress("relight-sequence", lights.size());
   for (std::size_t first = 0; first < lights.size(); first += options.batch) {
     const std::size_t count = std::min<std::size_t>(options.batch, lights.size() - first);
     const std::vector<LightRgb> batch(lights.begin() + first, lights.begin() + first + count);
     const auto start = clock::now();
-    const std::vector<Image> images = renderer.render(batch);
+    const std::vector<Image> images = renderer.relight_batch(batch, cap);
     relight_seconds += std::chrono::duration<double>(clock::now() - start).count();
     kernel_seconds += renderer.last_kernel_seconds();
     kernel_bytes += renderer.last_kernel_bytes();
     std::vector<Image> references;
-    if (options.compare) references = renderer.render(batch, full_residual);
+    if (options.compare) references = renderer.relight_batch(batch, full_residual);
     for (std::size_t b = 0; b < count; ++b) {
       const int frame = static_cast<int>(first + b);
       write_image(frame_path(options.output_pattern, frame), images[b], {options.exposure});
-      nlohmann::json record = {{"frame", frame}, {"file", frame_path(options.output_pattern, frame)}};
+      nlohmann::ordered_json record = {{"frame", frame}, {"file", frame_path(options.output_pattern, frame)}};
       if (options.compare) record["error"] = image_difference(images[b], references[b]).relative_squared_error;
       frames.push_back(record);
       progress.advance();
@@ -134,29 +136,27 @@ void run_sequence(const SequenceOptions& options) {
 
   const double fps = relight_seconds > 0 ? lights.size() / relight_seconds : 0;
   const double gbps = kernel_seconds > 0 ? 1e-9 * kernel_bytes / kernel_seconds : 0;
-  std::printf("%zu frames on %s, batch %d, residual cap %s: %.1f frames/s relighting (%.2f s), "
-              "kernels %.2f GB/s\n",
-              lights.size(), renderer.device_name().c_str(), options.batch,
-              renderer.residual_cap() == full_residual ? "all"
-                                                       : std::to_string(renderer.residual_cap()).c_str(),
-              fps, relight_seconds, gbps);
+  say("%zu frames on %s, batch %d, residual cap %s: %.1f frames/s relighting (%.2f s), "
+      "kernels %.2f GB/s",
+      lights.size(), renderer.device_name().c_str(), options.batch,
+      cap == full_residual ? "all" : std::to_string(cap).c_str(), fps, relight_seconds, gbps);
   if (options.compare) {
     double worst = 0;
     for (const auto& f : frames) worst = std::max(worst, f["error"].get<double>());
-    std::printf("largest per-frame relative squared error against the full residual: %.3g\n", worst);
+    say("largest per-frame relative squared error against the full residual: %.3g", worst);
   }
   if (!options.report.empty()) {
-    const nlohmann::json report = {{"device", renderer.device_name()},
+    const nlohmann::ordered_json report = {{"device", renderer.device_name()},
                                    {"frames", lights.size()},
                                    {"batch", options.batch},
-                                   {"residual_cap", renderer.residual_cap() == full_residual
+                                   {"residual_cap", cap == full_residual
                                                         ? -1
-                                                        : renderer.residual_cap()},
+                                                        : cap},
                                    {"relight_seconds", relight_seconds},
                                    {"frames_per_second", fps},
                                    {"kernel_gbps", gbps},
                                    {"per_frame", frames}};
-    write_file_atomically(options.report, report.dump(2) + "\n");
+    write_json_report(options.report, report);
   }
 }
 

@@ -1,7 +1,7 @@
 // `relume sky`: writes the built-in procedural sky (lat-long HDR) for demos and tests.
 #include "command_registry.hpp"
-#include "image/image_io.hpp"
-#include "lighting/procedural_sky.hpp"
+#include <relume/image.hpp>
+#include <relume/lighting.hpp>
 
 namespace relume {
 namespace {

@@ -7,8 +7,9 @@
 #include <string>
 
 #include "command_registry.hpp"
-#include "core/error.hpp"
-#include "field/field_io.hpp"
+#include "core/console.hpp"
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include "core/progress.hpp"
 #include "synth/synthetic_scene.hpp"
 
@@ -48,16 +49,13 @@ void run_synth(const SynthArguments& arguments) {
   progress.finish();
   const double render_seconds = progress.elapsed_seconds();
 
-  if (!progress_quiet_by_environment())
-    std::fprintf(stderr, "synth: writing %d EXR images to %s\n", options.lights,
-                 arguments.output.c_str());
+  note("synth: writing %d EXR images to %s", options.lights, arguments.output.c_str());
   const auto write_start = std::chrono::steady_clock::now();
   write_field_folder(arguments.output, field);
   const double write_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
 
-  std::printf(
-      "synth: %dx%d, %d lights (%s), seed %llu -> %s: rendered in %.2f s, written in %.2f s\n",
+  say("synth: %dx%d, %d lights (%s), seed %llu -> %s: rendered in %.2f s, written in %.2f s",
       options.width, options.height, options.lights,
       options.layout == LightLayout::sphere ? "sphere" : "hemisphere",
       static_cast<unsigned long long>(options.seed), arguments.output.c_str(), render_seconds,

@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "core/atomic_file.hpp"
 #include "bench/bench_container_sweep.hpp"
 #include "bench/bench_runs.hpp"
 #include "command_registry.hpp"
+#include "json_report.hpp"
 #include "container/container.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "core/progress.hpp"
 #include "model/random_compressed_field.hpp"
 
@@ -235,7 +235,7 @@ void run_bench(const BenchOptions& options) {
                 : nlohmann::ordered_json();
     json["records"] = nlohmann::ordered_json::array();
     for (const auto& record : records) json["records"].push_back(to_json(record));
-    write_file_atomically(options.json, json.dump(2) + "\n");
+    write_json_report(options.json, json);
   }
 }
 

@@ -1,8 +1,8 @@
 // Implementation of the residual points of `relume bench --container`.
 #include "bench/bench_container_sweep.hpp"
 
-#include "core/error.hpp"
-#include "field/field_io.hpp"
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include "model/reconstruct_field.hpp"
 #include "compress/residual_selection.hpp"
 

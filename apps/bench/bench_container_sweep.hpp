@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/bench_records.hpp"
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 
 namespace relume {
 

@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
 #include "command_registry.hpp"
+#include "json_report.hpp"
 #include "core/elapsed_time.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "l1/factorization.hpp"
 #include "l1/planted_matrix.hpp"
 #include "core/progress.hpp"
@@ -247,7 +247,7 @@ void run_bench_factor(const BenchFactorOptions& options) {
                                      {"solver", r.solver},
                                      {"microseconds_per_solve_median", r.microseconds_per_solve},
                                      {"gap_to_exact", r.gap}});
-    write_file_atomically(options.json, json.dump(2) + "\n");
+    write_json_report(options.json, json);
   }
 }
 

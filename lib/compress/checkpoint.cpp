@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

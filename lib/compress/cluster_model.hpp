@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 
 namespace relume {
 

@@ -7,7 +7,7 @@
 
 #include "compress/cluster_assignment.hpp"
 #include "compress/cluster_basis.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "core/parallel.hpp"
 
 namespace relume {

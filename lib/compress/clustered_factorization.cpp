@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/elapsed_time.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "model/haar_transform.hpp"
 #include "core/parallel.hpp"
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "compress/cluster_iterations.hpp"
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 #include "compress/multires_clustering.hpp"
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 #include "compress/residual_selection.hpp"
 
 namespace relume {

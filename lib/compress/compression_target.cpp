@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <functional>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 

@@ -6,7 +6,7 @@
 
 #include "field/downsample.hpp"
 #include "core/elapsed_time.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "core/progress.hpp"
 
 namespace relume {

@@ -6,7 +6,7 @@
 
 #include "compress/cluster_iterations.hpp"
 #include "compress/cluster_model.hpp"
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 
 namespace relume {
 

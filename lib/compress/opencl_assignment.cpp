@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 
@@ -114,6 +114,18 @@ AssignmentResult OpenClAssigner::assign(const WorkingRows& rows, const ClusterMo
                 opencl_error_name(error.err()));
   }
   return result;
+}
+
+std::unique_ptr<OpenClAssigner> make_opencl_assigner(const std::string& device_selector,
+                                                     const ClusteringOptions& clustering) {
+  if (clustering.threads > 0) limit_cpu_driver_threads(clustering.threads);
+  try {
+    return std::make_unique<OpenClAssigner>(device_selector, clustering.weight_fit);
+  } catch (const Error& error) {
+    throw Error(std::string(error.what()) +
+                " (the assignment runs without OpenCL with --assign cpu, or opencl_assignment = "
+                "false in the library)");
+  }
 }
 
 }  // namespace relume

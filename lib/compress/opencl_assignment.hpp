@@ -44,4 +44,9 @@ class OpenClAssigner {
   double kernel_seconds_ = 0;
 };
 
+// The OpenCL assignment on `device_selector` with `clustering`'s weight-fit settings, PoCL's
+// threads capped by clustering.threads like the CPU work. Its error says how to go without OpenCL.
+std::unique_ptr<OpenClAssigner> make_opencl_assigner(const std::string& device_selector,
+                                                     const ClusteringOptions& clustering);
+
 }  // namespace relume

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 
 namespace relume {
 

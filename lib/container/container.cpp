@@ -13,7 +13,8 @@
 #include "container/container_bit_set.hpp"
 #include "container/container_bytes.hpp"
 #include "container/crc32.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
+#include <relume/version.hpp>
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -149,7 +150,8 @@ EncodedContainer encode_container(const CompressedField& field, const ContainerO
                  {"cluster_id_bits", 8 * widths.cluster_id_bytes},
                  {"residual_length_bits", 8 * widths.residual_length_bytes},
                  {"light_index_bits", 8 * widths.light_index_bytes},
-                 {"parameters", parse_parameters(options.parameters_json, where)}};
+                 {"parameters", parse_parameters(options.parameters_json, where)},
+                 {"software", version_line()}};
   sections[0] = header.dump();
 
   ByteWriter lights;
@@ -461,6 +463,11 @@ class ContainerDecoder {
     if (parameters == header.end() || !parameters->is_object())
       throw Error(at + ": 'parameters' is missing or not a JSON object");
     decoded.options.parameters_json = parameters->dump();
+    const auto software = header.find("software");
+    if (software != header.end()) {
+      if (!software->is_string()) throw Error(at + ": 'software' is not a string");
+      decoded.options.written_by = software->get<std::string>();
+    }
     return decoded;
   }
 

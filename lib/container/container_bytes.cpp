@@ -5,7 +5,7 @@
 
 #include <bit>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 

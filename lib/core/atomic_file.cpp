@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace fs = std::filesystem;

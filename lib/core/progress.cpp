@@ -6,17 +6,23 @@
 #include <cstdio>
 #include <cstdlib>
 
-namespace relume {
+#include "core/console.hpp"
 
-bool progress_quiet_by_environment() {
+namespace relume {
+namespace {
+
+// RELUME_QUIET set to anything but "" or "0" (test runs, logs) silences every progress bar.
+bool quiet_by_environment() {
   const char* value = std::getenv("RELUME_QUIET");
   return value && std::string(value) != "0" && std::string(value) != "";
 }
 
+}  // namespace
+
 ProgressReporter::ProgressReporter(std::string title, std::uint64_t total, bool quiet)
     : title_(std::move(title)),
       total_(total),
-      quiet_(quiet || progress_quiet_by_environment()),
+      quiet_(quiet || verbosity() == Verbosity::quiet || quiet_by_environment()),
       terminal_(isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()) {
   if (!quiet_) thread_ = std::thread([this] { run(); });

@@ -14,7 +14,8 @@ namespace relume {
 
 class ProgressReporter {
  public:
-  // total: number of work units; quiet: print nothing (tests, --quiet).
+  // total: number of work units; quiet: print nothing (also when the verbosity is quiet or
+  // RELUME_QUIET is set to anything but "" or "0").
   ProgressReporter(std::string title, std::uint64_t total, bool quiet = false);
   ~ProgressReporter();
   ProgressReporter(const ProgressReporter&) = delete;
@@ -40,8 +41,5 @@ class ProgressReporter {
   bool stop_ = false;
   std::thread thread_;
 };
-
-// Whether relume's own progress output should be silent (RELUME_QUIET=1 in the environment).
-bool progress_quiet_by_environment();
 
 }  // namespace relume

@@ -1,7 +1,7 @@
 // 2x2 box downsampling of reflectance fields (see downsample.hpp).
 #include "field/downsample.hpp"
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 

@@ -3,7 +3,7 @@
 // inside the mask when any of its four input pixels is.
 #pragma once
 
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 
 namespace relume {
 

@@ -1,5 +1,5 @@
 // Loading reflectance fields from DiLiGenT-style folders and RTI .lp files; writing field folders.
-#include "field/field_io.hpp"
+#include <relume/field.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "field/light_file.hpp"
 #include "core/parallel.hpp"
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 
 namespace relume {
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

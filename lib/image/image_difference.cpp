@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 

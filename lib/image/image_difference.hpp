@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "image/image.hpp"
+#include <relume/image.hpp>
 
 namespace relume {
 

@@ -1,5 +1,5 @@
 // OpenImageIO-backed implementation of read_image / write_image.
-#include "image/image_io.hpp"
+#include <relume/image.hpp>
 
 #include <OpenImageIO/imageio.h>
 
@@ -8,7 +8,8 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
+#include <relume/version.hpp>
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -64,6 +65,7 @@ void write_image(const fs::path& path, const Image& image, const ImageWriteOptio
     if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
     OIIO::ImageSpec spec(image.width, image.height, image.channels,
                          as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    spec.attribute("Software", version_line());
     if (!output->open(temp.string(), spec))
       throw Error("cannot write " + path.string() + ": " + output->geterror());
     if (!output->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !output->close())

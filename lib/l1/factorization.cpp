@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -2,7 +2,7 @@
 // simplex call with one cold retry.
 #include "l1/glpk.hpp"
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

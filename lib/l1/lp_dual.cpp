@@ -6,7 +6,7 @@
 // sign of the residual b_i - A_i x wherever that is non-zero.
 #include <vector>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "l1/glpk.hpp"
 #include "l1/methods.hpp"
 

@@ -5,7 +5,7 @@
 // feasible, so each solve after the first is a warm-started dual simplex.
 #include <vector>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "l1/glpk.hpp"
 #include "l1/methods.hpp"
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "l1/methods.hpp"
 #include "core/parallel.hpp"
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.hpp"
-#include "image/image_io.hpp"
+#include <relume/error.hpp>
+#include <relume/image.hpp>
 
 namespace relume {
 namespace {

@@ -1,5 +1,5 @@
-// Environment maps: loading (any format OpenImageIO reads), layout detection, and the mapping
-// between image positions and directions on the sphere with each pixel's solid angle.
+// Environment-map geometry and layout rules behind relume/lighting.hpp: layout detection, and the
+// mapping between image positions and directions on the sphere with each pixel's solid angle.
 //
 // Frame (shared with the light directions, DiLiGenT convention): x right, y up, z towards the
 // camera; the viewer looks along -z. A direction points from the object towards where the light
@@ -32,14 +32,9 @@
 #include <optional>
 #include <string>
 
-#include "image/image.hpp"
+#include <relume/lighting.hpp>
 
 namespace relume {
-
-enum class EnvironmentLayout { latlong, angular, cross };
-
-// "latlong", "angular" or "cross".
-std::string layout_name(EnvironmentLayout layout);
 
 // Parses a --layout value: "auto" gives nullopt (detect from the size); anything other than the
 // four names throws Error.
@@ -53,13 +48,6 @@ EnvironmentLayout detect_layout(int width, int height, const std::string& name);
 // Throws Error naming `name` when a map of this size cannot have this layout (angular must be
 // square, cross 3:4, latlong at least 2 x 1).
 void check_layout_size(EnvironmentLayout layout, int width, int height, const std::string& name);
-
-// The geometry of a map: its layout and size in pixels.
-struct MapGeometry {
-  EnvironmentLayout layout = EnvironmentLayout::latlong;
-  int width = 0;
-  int height = 0;
-};
 
 // Unit direction at continuous image position (x, y); nullopt where the position is not part of
 // the map (outside the angular disc or the cross faces).
@@ -76,22 +64,5 @@ Eigen::Vector2i direction_to_pixel(const MapGeometry& map, const Eigen::Vector3d
 // Exact for latlong and cross; for angular the pixel's share of the disc is integrated
 // numerically. Over a whole map they sum to 4 pi.
 double pixel_solid_angle(const MapGeometry& map, int px, int py);
-
-struct EnvironmentMap {
-  std::string name;  // the file it came from, for messages
-  EnvironmentLayout layout = EnvironmentLayout::latlong;
-  Image radiance;  // linear RGB (3 channels), every value finite
-
-  MapGeometry geometry() const { return {layout, radiance.width, radiance.height}; }
-};
-
-// Reads a map with read_image. `layout` nullopt detects it from the aspect ratio. One channel is
-// taken as grey, from three channels up the first three are R G B (alpha is ignored). Throws
-// Error for unreadable files, unknown or ambiguous sizes, and NaN/Inf values (naming the pixel).
-EnvironmentMap load_environment_map(const std::filesystem::path& path,
-                                    std::optional<EnvironmentLayout> layout);
-
-// Wraps an image already in memory (tests, generated maps) with the same checks as loading.
-EnvironmentMap make_environment_map(Image radiance, EnvironmentLayout layout, std::string name);
 
 }  // namespace relume

@@ -1,6 +1,6 @@
 // Solid-angle integration of an environment map over the Voronoi cells of a light set, with a
 // coarse cube grid of candidate lights so that each map pixel tests a few lights, not all.
-#include "lighting/light_vector.hpp"
+#include <relume/lighting.hpp>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,8 +9,9 @@
 #include <numbers>
 #include <vector>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "core/parallel.hpp"
+#include "lighting/environment_map.hpp"
 
 namespace relume {
 namespace {

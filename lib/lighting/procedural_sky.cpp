@@ -1,11 +1,11 @@
 // Implementation of the procedural lat-long sky.
-#include "lighting/procedural_sky.hpp"
+#include <relume/lighting.hpp>
 
 #include <cmath>
 #include <numbers>
 
 #include "lighting/environment_map.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 
 namespace relume {
 

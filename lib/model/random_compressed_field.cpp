@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 
 namespace relume {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "model/compressed_field_checks.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "model/haar_transform.hpp"
 #include "core/parallel.hpp"
 

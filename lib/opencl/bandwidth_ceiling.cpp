@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "opencl/kernel_sources.hpp"
 
 namespace relume {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "container/container.hpp"
-#include "core/error.hpp"
+#include "model/compressed_field_checks.hpp"
+#include <relume/error.hpp>
 #include "model/haar_transform.hpp"
 #include "core/parallel.hpp"
 

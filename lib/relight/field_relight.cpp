@@ -1,7 +1,7 @@
 // Implementation of the reference field relighter.
-#include "relight/field_relight.hpp"
+#include <relume/relight.hpp>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "core/parallel.hpp"
 
 namespace relume {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "relight/relight_layout.hpp"
 
 namespace relume {

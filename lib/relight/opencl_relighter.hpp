@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 #include "relight/compressed_relight_reference.hpp"
-#include "image/image.hpp"
+#include <relume/image.hpp>
 #include "opencl/runtime.hpp"
 #include "relight/relight_layout.hpp"
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/compressed_field.hpp"
+#include <relume/compressed_field.hpp>
 
 namespace relume {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "synth/synthetic_scene.hpp"

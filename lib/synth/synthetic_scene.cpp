@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
 #include "synth/synthetic_materials.hpp"
 
 namespace relume {

@@ -13,8 +13,8 @@
 #include "compress/checkpoint.hpp"
 #include "compress/clustered_factorization.hpp"
 #include "container/container.hpp"
-#include "core/error.hpp"
-#include "field/field_io.hpp"
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include "opencl/runtime.hpp"
 #include "model/reconstruct_field.hpp"
 #include "support/test_support.hpp"

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <random>
 
-#include "image/image_io.hpp"
+#include <relume/image.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

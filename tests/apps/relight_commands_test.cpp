@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "image/image_io.hpp"
+#include <relume/image.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

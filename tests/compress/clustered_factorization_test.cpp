@@ -11,7 +11,7 @@
 #include "compress/cluster_size_rules.hpp"
 #include "compress/clustered_factorization.hpp"
 #include "model/compressed_field_checks.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "model/reconstruct_field.hpp"
 
 namespace relume {

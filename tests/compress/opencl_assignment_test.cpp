@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "compress/cluster_assignment.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "compress/random_assignment_problem.hpp"
 
 namespace relume {

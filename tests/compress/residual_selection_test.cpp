@@ -2,7 +2,7 @@
 // sorted by |value| descending with their light index, so every prefix is the best shorter row.
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "compress/residual_selection.hpp"
 
 namespace relume {

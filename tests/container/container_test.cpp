@@ -11,8 +11,8 @@
 #include "core/atomic_file.hpp"
 #include "container/container_bytes.hpp"
 #include "container/crc32.hpp"
-#include "core/error.hpp"
-#include "image/image_io.hpp"
+#include <relume/error.hpp>
+#include <relume/image.hpp>
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"
 

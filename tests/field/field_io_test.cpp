@@ -1,6 +1,6 @@
 // Tests for loading reflectance fields: layouts, intensity division, masks, bit depths, and every
 // kind of bad input (each named in the message, each a non-zero exit from the CLI).
-#include "field/field_io.hpp"
+#include <relume/field.hpp>
 
 #include <OpenImageIO/imageio.h>
 
@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "field/downsample.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

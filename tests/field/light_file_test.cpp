@@ -3,7 +3,7 @@
 
 #include <fstream>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

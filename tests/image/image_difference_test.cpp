@@ -8,8 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/error.hpp"
-#include "image/image_io.hpp"
+#include <relume/error.hpp>
+#include <relume/image.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "l1/planted_matrix.hpp"
 #include "field/npy.hpp"
 #include "support/test_support.hpp"

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -13,8 +13,8 @@
 #include <numbers>
 #include <random>
 
-#include "core/error.hpp"
-#include "image/image_io.hpp"
+#include <relume/error.hpp>
+#include <relume/image.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

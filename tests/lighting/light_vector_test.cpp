@@ -1,7 +1,7 @@
 // Tests of the light vector: solid-angle weights over Voronoi cells on the sphere, the up axis
 // and handedness of each layout seen through the lights, rotation, hemisphere coverage, the real
 // maps with real light sets, and `relume lights` on good and bad input.
-#include "lighting/light_vector.hpp"
+#include <relume/lighting.hpp>
 
 #include <OpenImageIO/imageio.h>
 
@@ -14,8 +14,8 @@
 #include <random>
 
 #include "lighting/environment_map.hpp"
-#include "core/error.hpp"
-#include "image/image_io.hpp"
+#include <relume/error.hpp>
+#include <relume/image.hpp>
 #include "field/light_file.hpp"
 #include "support/test_support.hpp"
 

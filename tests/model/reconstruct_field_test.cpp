@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "container/container.hpp"
-#include "core/error.hpp"
-#include "field/field_io.hpp"
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include "model/haar_transform.hpp"
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"

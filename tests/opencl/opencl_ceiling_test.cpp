@@ -5,7 +5,7 @@
 #include <random>
 
 #include "opencl/bandwidth_ceiling.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <optional>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "opencl/kernel_sources.hpp"
 #include "support/test_support.hpp"
 

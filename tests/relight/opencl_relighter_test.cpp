@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "relight/compressed_relight_reference.hpp"
-#include "core/error.hpp"
+#include <relume/error.hpp>
 #include "model/haar_transform.hpp"
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <random>
 
-#include "core/error.hpp"
+#include <relume/error.hpp>
 
 namespace relume::testing {
 namespace fs = std::filesystem;

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.hpp"
-#include "field/field_io.hpp"
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

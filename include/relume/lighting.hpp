@@ -1,6 +1,14 @@
-// The light vector I of an environment map for a set of light directions: each light receives
-// the radiance x solid angle of its Voronoi cell on the sphere (the map directions nearer to it,
-// by dot product, than to any other light), integrated over the map's pixels.
+// relume/lighting.hpp: environment maps, the light vectors they give a light set, and a built-in
+// sky.
+//
+// Frame (shared with the light directions, DiLiGenT convention): x right, y up, z towards the
+// camera; the viewer looks along -z. A direction points from the object towards where the light
+// comes from. Maps come as lat-long (2:1), angular / mirror-ball light probes (1:1) or HDR Shop
+// vertical crosses (3:4); the geometry of each is described in lib/lighting/environment_map.hpp.
+//
+// The light vector I of a map for a set of light directions: each light receives the radiance x
+// solid angle of its Voronoi cell on the sphere (the map directions nearer to it, by dot product,
+// than to any other light), integrated over the map's pixels.
 //
 // Coverage rule. A light set may cover only part of the sphere (DiLiGenT's 96 lights sit in front
 // of the object). The coverage radius rho of a set is the median, over its lights, of the angle to
@@ -18,13 +26,44 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "lighting/environment_map.hpp"
-#include "field/reflectance_field.hpp"
+#include <relume/field.hpp>
+#include <relume/image.hpp>
 
 namespace relume {
+
+enum class EnvironmentLayout { latlong, angular, cross };
+
+// "latlong", "angular" or "cross".
+std::string layout_name(EnvironmentLayout layout);
+
+// The geometry of a map: its layout and size in pixels.
+struct MapGeometry {
+  EnvironmentLayout layout = EnvironmentLayout::latlong;
+  int width = 0;
+  int height = 0;
+};
+
+struct EnvironmentMap {
+  std::string name;  // the file it came from, for messages
+  EnvironmentLayout layout = EnvironmentLayout::latlong;
+  Image radiance;  // linear RGB (3 channels), every value finite
+
+  MapGeometry geometry() const { return {layout, radiance.width, radiance.height}; }
+};
+
+// Reads a map with read_image. `layout` nullopt detects it from the aspect ratio. One channel is
+// taken as grey, from three channels up the first three are R G B (alpha is ignored). Throws
+// Error for unreadable files, unknown or ambiguous sizes, and NaN/Inf values (naming the pixel).
+EnvironmentMap load_environment_map(const std::filesystem::path& path,
+                                    std::optional<EnvironmentLayout> layout = std::nullopt);
+
+// Wraps an image already in memory (tests, generated maps) with the same checks as loading.
+EnvironmentMap make_environment_map(Image radiance, EnvironmentLayout layout, std::string name);
 
 struct LightVector {
   LightRgb rgb;                // one row per light, R G B
@@ -70,5 +109,17 @@ LightVector integrate_light_vector(const EnvironmentMap& map, const LightDirecti
 // One line for users: the share of the map's energy outside the light set, the total energy and
 // the coverage radius.
 std::string describe_coverage(const LightVector& vector);
+
+// A built-in HDR environment: a lat-long sky with a small bright sun, a blue gradient that
+// brightens towards the horizon, and a darker warm ground. It lets the demo and tests relight
+// without any external map; the sun gives the high dynamic range real probes have.
+struct SkyOptions {
+  int width = 512;                 // lat-long, height = width / 2
+  double sun_elevation_deg = 35;   // above the horizon
+  double sun_azimuth_deg = 30;     // about +y, from -z (straight ahead) towards +x
+  double sun_radiance = 5000;      // inside the sun's disc
+  double sun_radius_deg = 2.0;
+};
+Image render_sky(const SkyOptions& options);
 
 }  // namespace relume

@@ -1,0 +1,98 @@
+// relume/compressed_field.hpp: a reflectance field compressed by clustered sparse residual factorization (paper Eq. 2):
+//   R[p,:] ~ W[p,:] * F^{c(p)} + E[p,:]
+// Only the functions that a scene needs are stored ("stored rows"): functions outside the mask and
+// all-zero functions have no row and relight to zero. This is what the container file holds and
+// what the relighting kernels read.
+//
+// reconstruct_field expands it back into a ReflectanceField; relative_error is the paper's error
+// measure (Eq. 16) between an original field and its compressed form.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <relume/field.hpp>
+
+namespace relume {
+
+// Basis in which rows of F and the residual are expressed (paper Eq. 3). The relighter transforms
+// the light vector the same way before use.
+enum class BasisTransform : std::uint8_t { identity = 0, haar = 1 };
+
+// Sparse residual rows in CSR form. Each row's entries are sorted by |value| descending, so every
+// prefix of a row is the best residual of that length (the dynamic residual of paper section 4).
+struct ResidualRows {
+  std::vector<std::uint32_t> row_offsets;  // stored_rows + 1
+  std::vector<std::uint32_t> light_index;  // nnz
+  std::vector<float> values;               // nnz
+
+  std::size_t rows() const { return row_offsets.empty() ? 0 : row_offsets.size() - 1; }
+  std::size_t nonzeros() const { return values.size(); }
+  std::uint32_t length(std::size_t row) const { return row_offsets[row + 1] - row_offsets[row]; }
+  std::uint32_t longest_row() const {
+    std::uint32_t longest = 0;
+    for (std::size_t r = 0; r < rows(); ++r) longest = std::max(longest, length(r));
+    return longest;
+  }
+};
+
+struct CompressedField {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  int lights = 0;    // m
+  int terms = 0;     // t, basis functions per cluster
+  int clusters = 0;  // K
+  BasisTransform transform = BasisTransform::identity;
+  std::vector<std::uint8_t> mask;  // width * height
+  LightDirections directions;      // lights x 3
+  LightRgb intensities;            // lights x 3
+
+  std::vector<std::uint32_t> stored_function;  // stored row -> function index p, ascending
+  std::vector<std::uint32_t> cluster;          // stored row -> cluster id in [0, clusters)
+  RowMatrixF weights;                          // stored rows x terms (W)
+  std::vector<float> bases;  // clusters * terms * lights: F^k[j][i] at (k * terms + j) * lights + i
+  ResidualRows residual;     // stored rows, in the transformed basis
+
+  std::size_t stored_rows() const { return stored_function.size(); }
+  std::int64_t functions() const { return std::int64_t(width) * height * channels; }
+  const float* basis(int k) const { return bases.data() + std::size_t(k) * terms * lights; }
+};
+
+// residual_cap: entries of each residual row to keep (its largest ones, since rows are sorted by
+// |value| descending); -1 keeps all. Anything below -1 is refused.
+inline constexpr int all_residual_entries = -1;
+
+// The whole field in the original (light) basis: stored rows reconstructed and, for a Haar-stored
+// field, transformed back; functions that are not stored are zero. Mask, directions and
+// intensities are copied; image_names are left empty (write_field_folder names the images).
+// Throws Error for an inconsistent field (validate_compressed_field) or a cap below -1.
+ReflectanceField reconstruct_field(const CompressedField& field,
+                                   int residual_cap = all_residual_entries);
+
+// Paper Eq. 16: err = (1/n) sum_p ( sum_i (R[p,i] - R~[p,i])^2 / sum_i R[p,i]^2 ).
+// Functions whose original energy sum_i R[p,i]^2 is zero have no defined relative error: they are
+// left out of the average (n counts only the others) and counted in zero_energy_skipped.
+struct RelativeError {
+  double mean = 0;                       // the average above; 0 when nothing was averaged
+  std::int64_t functions_averaged = 0;   // n
+  std::int64_t zero_energy_skipped = 0;  // functions left out for having zero energy
+};
+
+// masked_only: average only over functions whose pixel is inside the compressed field's mask.
+// Throws Error unless `original` has the compressed field's size, channels and lights, or for an
+// inconsistent compressed field or a cap below -1. Accumulates in double, in fixed blocks, so
+// the result does not depend on `threads` (0 = all cores).
+RelativeError relative_error(const ReflectanceField& original, const CompressedField& compressed,
+                             bool masked_only, int residual_cap = all_residual_entries,
+                             unsigned threads = 0);
+
+// Eq. 16 of `approximation` against `reference`, two compressions of the same field (or one with
+// itself at a shorter residual), over the functions `reference` stores (each with its full
+// residual; functions `approximation` does not store count as zero), compared in the light basis.
+// `approximation_cap`: residual entries per row of `approximation` (all_residual_entries: all).
+RelativeError relative_error(const CompressedField& reference, const CompressedField& approximation,
+                             int approximation_cap = all_residual_entries, unsigned threads = 0);
+
+}  // namespace relume

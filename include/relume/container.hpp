@@ -1,0 +1,69 @@
+// relume/container.hpp: the .relume container, a CompressedField on disk, versioned and
+// checksummed (byte layout in docs/container.md). A fixed preamble (magic "RELUME\0\0", format
+// version, section table with one CRC-32 per section, CRC-32 of the table) is followed by the
+// sections back to back: header (JSON), lights, mask, functions, clusters, bases, weights,
+// residual_offsets, residual_indices, residual_values. Values are float32 by default; W and
+// residual values may be stored as IEEE half, light indices as 8/16/32 bits. Every byte of the
+// file is covered by a checksum and everything is validated on read: a truncated, altered or
+// inconsistent file is refused with an Error naming the file and the section.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <relume/compressed_field.hpp>
+
+namespace relume {
+
+inline constexpr std::uint32_t container_format_version = 1;
+
+enum class ValuePrecision : std::uint8_t { float32, float16 };
+enum class IndexWidth : std::uint8_t { automatic, bits8, bits16, bits32 };
+
+struct ContainerOptions {
+  ValuePrecision weights = ValuePrecision::float32;
+  ValuePrecision residual = ValuePrecision::float32;  // residual values
+  IndexWidth light_index = IndexWidth::automatic;     // residual light indices
+  // Free-form compression parameters, a JSON object, recorded in the header. On read it comes
+  // back re-serialised (same content, keys sorted).
+  std::string parameters_json = "{}";
+  // On read: the relume version and commit that wrote the file (version_line()); every write
+  // records its own, whatever this holds. Empty for files written before it was recorded.
+  std::string written_by;
+};
+
+struct ContainerSection {
+  std::string name;
+  std::uint64_t offset = 0;  // from the start of the file
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32 = 0;
+};
+
+struct ContainerLayout {
+  std::uint32_t version = container_format_version;
+  std::uint64_t preamble_bytes = 0;  // magic, version, section table and its checksum
+  std::uint64_t file_bytes = 0;
+  std::vector<ContainerSection> sections;  // in file order
+
+  // Throws Error when there is no section of that name.
+  const ContainerSection& section(std::string_view name) const;
+};
+
+// Writes atomically (temporary file, fsync, rename). Throws Error, writing nothing, if the field is
+// inconsistent (lib/model/compressed_field_checks.hpp), the parameters are not a JSON object, a value does not
+// fit the chosen precision (|x| > 65504 for half) or the lights do not fit the chosen index width.
+void write_container(const std::filesystem::path& path, const CompressedField& field,
+                     const ContainerOptions& options = {});
+
+// Reads and validates a container. `stored_options`, when given, receives how it was stored:
+// precisions, the light index width in use (never automatic) and the parameters.
+CompressedField read_container(const std::filesystem::path& path,
+                               ContainerOptions* stored_options = nullptr);
+
+// The section table of a container, with every checksum verified (not the contents' meaning).
+ContainerLayout describe_container(const std::filesystem::path& path);
+
+}  // namespace relume
