@@ -12,14 +12,15 @@ int edit_distance(const std::string& a, const std::string& b) {
   for (std::size_t i = 1; i <= a.size(); ++i) {
     current[0] = int(i);
     for (std::size_t j = 1; j <= b.size(); ++j)
-      current[j] = std::min({previous[j] + 1, current[j - 1] + 1,
-                             previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      current[j] = std::min(
+          {previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
     std::swap(previous, current);
   }
   return previous[b.size()];
 }
 
-std::string unknown_command_message(const std::string& word, const std::vector<std::string>& known) {
+std::string unknown_command_message(const std::string& word,
+                                    const std::vector<std::string>& known) {
   std::string message = "unknown command '" + word + "'";
   std::string nearest;
   int best = 0;

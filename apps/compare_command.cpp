@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <relume/image.hpp>
 
 #include "command_registry.hpp"
-#include "json_report.hpp"
 #include "image/image_difference.hpp"
-#include <relume/image.hpp>
+#include "json_report.hpp"
 
 namespace relume {
 namespace {

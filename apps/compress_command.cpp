@@ -1,7 +1,7 @@
 // `relume compress`: clustered sparse residual factorization of one or more reflectance fields
-// into .relume containers, with a JSON report per run (lib/compress/compression_report.hpp), checkpoints
-// after every clustering iteration (--resume continues an interrupted run) and, with several
-// inputs, one container per input in the output folder: a failing input is reported and the
+// into .relume containers, with a JSON report per run (lib/compress/compression_report.hpp),
+// checkpoints after every clustering iteration (--resume continues an interrupted run) and, with
+// several inputs, one container per input in the output folder: a failing input is reported and the
 // others still run.
 #include <chrono>
 #include <cmath>
@@ -9,21 +9,21 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
-
-#include "compress/checkpoint.hpp"
-#include "compress/clustered_factorization.hpp"
-#include "command_registry.hpp"
-#include "json_report.hpp"
-#include "core/console.hpp"
-#include "compress/compression_report.hpp"
-#include "compress/compression_target.hpp"
-#include "container/container.hpp"
-#include "core/elapsed_time.hpp"
 #include <relume/error.hpp>
 #include <relume/field.hpp>
+
+#include "command_registry.hpp"
+#include "compress/checkpoint.hpp"
+#include "compress/clustered_factorization.hpp"
+#include "compress/compression_report.hpp"
+#include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
+#include "container/container.hpp"
+#include "core/console.hpp"
+#include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "json_report.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -52,15 +52,16 @@ struct CompressArguments {
 // fingerprint is the same.
 std::string fingerprint(const std::string& input, const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;
-  return nlohmann::json{{"input", fs::absolute(input).lexically_normal().string()},
-                        {"clusters", clustering.clusters},
-                        {"terms", clustering.terms},
-                        {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
-                        {"multires", options.multires_levels},
-                        {"candidates", clustering.candidates},
-                        {"min", clustering.sizes.minimum},
-                        {"max", clustering.sizes.maximum},
-                        {"seed", clustering.seed}}
+  return nlohmann::json{
+      {"input", fs::absolute(input).lexically_normal().string()},
+      {"clusters", clustering.clusters},
+      {"terms", clustering.terms},
+      {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
+      {"multires", options.multires_levels},
+      {"candidates", clustering.candidates},
+      {"min", clustering.sizes.minimum},
+      {"max", clustering.sizes.maximum},
+      {"seed", clustering.seed}}
       .dump();
 }
 
@@ -76,8 +77,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   load.threads = options.clustering.threads;
   const ReflectanceField field = load_field(input, load);
   const double load_seconds = seconds_since(start);
-  note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(),
-       field.width, field.height, field.channels, field.lights(), load_seconds);
+  note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
+       field.height, field.channels, field.lights(), load_seconds);
 
   const fs::path checkpoint = output.string() + ".checkpoint";
   const std::string print = fingerprint(input, options);
@@ -99,8 +100,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressedField compressed;
   nlohmann::ordered_json target_choice;
   if (arguments.target_error > 0) {
-    TargetSearch search = compress_to_target_error(field, options, arguments.target_error,
-                                                   container, stats);
+    TargetSearch search =
+        compress_to_target_error(field, options, arguments.target_error, container, stats);
     compressed = std::move(search.field);
     options = search.options;
     target_choice = search.explanation;
@@ -109,8 +110,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   }
 
   const auto write_start = Clock::now();
-  container.parameters_json =
-      compression_parameters(options, stats, arguments.solver).dump();
+  container.parameters_json = compression_parameters(options, stats, arguments.solver).dump();
   write_container(output, compressed, container);
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
@@ -160,7 +160,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
 fs::path output_for(const fs::path& folder, const std::string& input) {
   fs::path name = fs::path(input).lexically_normal();
   if (name.filename().empty()) name = name.parent_path();
-  const std::string stem = name.extension() == ".lp" ? name.stem().string() : name.filename().string();
+  const std::string stem =
+      name.extension() == ".lp" ? name.stem().string() : name.filename().string();
   return folder / (stem + ".relume");
 }
 
@@ -171,7 +172,8 @@ void run_compress(CompressArguments& arguments) {
     options.transform = BasisTransform::haar;
   else if (arguments.transform != "identity")
     throw Error("--transform must be 'identity' or 'haar', got '" + arguments.transform + "'");
-  if (arguments.solver != "irls") options.clustering.exact_refit = parse_l1_method(arguments.solver);
+  if (arguments.solver != "irls")
+    options.clustering.exact_refit = parse_l1_method(arguments.solver);
   options.clustering.quiet = verbosity() == Verbosity::quiet;
   if (arguments.irls_iterations < 0)
     throw Error("--irls-iterations must be >= 0, got " + std::to_string(arguments.irls_iterations));
@@ -194,7 +196,8 @@ void run_compress(CompressArguments& arguments) {
   nlohmann::ordered_json reports = nlohmann::ordered_json::array();
   nlohmann::ordered_json failures = nlohmann::ordered_json::array();
   for (const std::string& input : arguments.inputs) {
-    const fs::path output = several ? output_for(arguments.output, input) : fs::path(arguments.output);
+    const fs::path output =
+        several ? output_for(arguments.output, input) : fs::path(arguments.output);
     if (!several) {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
       continue;
@@ -216,79 +219,92 @@ void run_compress(CompressArguments& arguments) {
                 " inputs failed (see the messages above)");
 }
 
-const CommandRegistration registration{20, [](CLI::App& app) {
-  auto arguments = std::make_shared<CompressArguments>();
-  CompressionOptions& options = arguments->options;
-  ClusteringOptions& clustering = options.clustering;
-  auto* command = app.add_subcommand(
-      "compress",
-      "Compress reflectance fields (field folders or .lp files) by clustered sparse residual\n"
-      "factorization into .relume containers, with an optional JSON report");
-  command->add_option("inputs", arguments->inputs, "Field folders or .lp files")->required();
-  command->add_option("-o,--output", arguments->output,
-                      "Output .relume file; with several inputs, a folder that receives one "
-                      "<input name>.relume per input")
-      ->required();
-  command->add_option("--clusters", clustering.clusters, "Clusters K")->capture_default_str();
-  command->add_option("--terms", clustering.terms, "Basis functions per cluster t (1 to 16)")
-      ->capture_default_str();
-  command->add_option("--residual", arguments->residual,
-                      "Residual entries kept per function: a count N or a percentage of the "
-                      "lights P% (default 5%)");
-  command->add_option("--threshold", options.residual_threshold,
-                      "Drop residual entries with |value| <= X, in field units (default 0)");
-  command->add_option("--solver", arguments->solver,
-                      "irls: the fast IRLS L1 fits only (default); lp-dual, lp or huber: refit "
-                      "every cluster's F and W exactly with that solver after the iterations");
-  command->add_option("--transform", arguments->transform,
-                      "Basis of the factorization: identity (default) or haar (orthonormal Haar "
-                      "wavelet over the light order; the residual is sparse in that basis)");
-  command->add_option("--multires", options.multires_levels,
-                      "Cluster a field downsampled 2x per level first, then assign full-resolution "
-                      "functions among the clusters near them (default 0: off)");
-  command->add_option("--refine", options.refine_iterations,
-                      "Full-resolution iterations after --multires clustering")
-      ->capture_default_str();
-  command->add_option("--iterations", clustering.max_iterations,
-                      "Cap on L1 iterations (F-step + reassignment); they stop earlier once "
-                      "fewer than 0.2% of the functions change cluster")
-      ->capture_default_str();
-  command->add_option("--candidates", clustering.candidates,
-                      "Clusters given the exact L1 fit per function, chosen by the smallest "
-                      "least-squares projection error")
-      ->capture_default_str();
-  command->add_option("--irls-iterations", arguments->irls_iterations,
-                      "Reweighted solves of every IRLS L1 fit (weights and bases)")
-      ->capture_default_str();
-  command->add_option("--min-cluster-size", clustering.sizes.minimum,
-                      "Clusters with fewer functions merge into their second-best cluster "
-                      "(default max(8, 2 x terms))");
-  command->add_option("--max-cluster-size", clustering.sizes.maximum,
-                      "Clusters with more functions split into two halves (default 0: no limit)");
-  command->add_option("--seed", clustering.seed, "Random seed of the cluster seeding")
-      ->capture_default_str();
-  command->add_option("--threads", clustering.threads,
-                      "Worker threads, also of PoCL for --assign opencl unless POCL_MAX_PTHREAD_COUNT "
-                      "is set (default 0: all cores)");
-  command->add_option("--assign", arguments->assign,
-                      "Where the reassignment fits run: opencl (default: kernels/assign.cl on --device) or "
-                      "cpu (the C++ reference path)");
-  command->add_option("--device", arguments->device,
-                      "OpenCL device for --assign opencl: a substring of 'platform / device' "
-                      "(default RELUME_DEVICE, else the first GPU, else PoCL)");
-  command->add_option("--weights-precision", arguments->weights_precision,
-                      "Stored W: float32 (default) or float16");
-  command->add_option("--residual-precision", arguments->residual_precision,
-                      "Stored residual values: float32 (default) or float16");
-  command->add_option("--report", arguments->report,
-                      "Write a JSON report (times, iterations, bytes, errors, sparseness, memory)");
-  command->add_option("--target-error", arguments->target_error,
-                      "Choose terms, clusters and per-function residual lengths that reach this "
-                      "relative error (paper Eq. 16, masked functions) with the fewest bytes");
-  command->add_flag("--resume", arguments->resume,
-                    "Continue from OUT.checkpoint, written after every clustering iteration");
-  command->callback([arguments] { run_compress(*arguments); });
-}};
+const CommandRegistration registration{
+    20, [](CLI::App& app) {
+      auto arguments = std::make_shared<CompressArguments>();
+      CompressionOptions& options = arguments->options;
+      ClusteringOptions& clustering = options.clustering;
+      auto* command = app.add_subcommand(
+          "compress",
+          "Compress reflectance fields (field folders or .lp files) by clustered sparse residual\n"
+          "factorization into .relume containers, with an optional JSON report");
+      command->add_option("inputs", arguments->inputs, "Field folders or .lp files")->required();
+      command
+          ->add_option("-o,--output", arguments->output,
+                       "Output .relume file; with several inputs, a folder that receives one "
+                       "<input name>.relume per input")
+          ->required();
+      command->add_option("--clusters", clustering.clusters, "Clusters K")->capture_default_str();
+      command->add_option("--terms", clustering.terms, "Basis functions per cluster t (1 to 16)")
+          ->capture_default_str();
+      command->add_option("--residual", arguments->residual,
+                          "Residual entries kept per function: a count N or a percentage of the "
+                          "lights P% (default 5%)");
+      command->add_option("--threshold", options.residual_threshold,
+                          "Drop residual entries with |value| <= X, in field units (default 0)");
+      command->add_option("--solver", arguments->solver,
+                          "irls: the fast IRLS L1 fits only (default); lp-dual, lp or huber: refit "
+                          "every cluster's F and W exactly with that solver after the iterations");
+      command->add_option(
+          "--transform", arguments->transform,
+          "Basis of the factorization: identity (default) or haar (orthonormal Haar "
+          "wavelet over the light order; the residual is sparse in that basis)");
+      command->add_option(
+          "--multires", options.multires_levels,
+          "Cluster a field downsampled 2x per level first, then assign full-resolution "
+          "functions among the clusters near them (default 0: off)");
+      command
+          ->add_option("--refine", options.refine_iterations,
+                       "Full-resolution iterations after --multires clustering")
+          ->capture_default_str();
+      command
+          ->add_option("--iterations", clustering.max_iterations,
+                       "Cap on L1 iterations (F-step + reassignment); they stop earlier once "
+                       "fewer than 0.2% of the functions change cluster")
+          ->capture_default_str();
+      command
+          ->add_option("--candidates", clustering.candidates,
+                       "Clusters given the exact L1 fit per function, chosen by the smallest "
+                       "least-squares projection error")
+          ->capture_default_str();
+      command
+          ->add_option("--irls-iterations", arguments->irls_iterations,
+                       "Reweighted solves of every IRLS L1 fit (weights and bases)")
+          ->capture_default_str();
+      command->add_option("--min-cluster-size", clustering.sizes.minimum,
+                          "Clusters with fewer functions merge into their second-best cluster "
+                          "(default max(8, 2 x terms))");
+      command->add_option(
+          "--max-cluster-size", clustering.sizes.maximum,
+          "Clusters with more functions split into two halves (default 0: no limit)");
+      command->add_option("--seed", clustering.seed, "Random seed of the cluster seeding")
+          ->capture_default_str();
+      command->add_option(
+          "--threads", clustering.threads,
+          "Worker threads, also of PoCL for --assign opencl unless POCL_MAX_PTHREAD_COUNT "
+          "is set (default 0: all cores)");
+      command->add_option(
+          "--assign", arguments->assign,
+          "Where the reassignment fits run: opencl (default: kernels/assign.cl on --device) or "
+          "cpu (the C++ reference path)");
+      command->add_option("--device", arguments->device,
+                          "OpenCL device for --assign opencl: a substring of 'platform / device' "
+                          "(default RELUME_DEVICE, else the first GPU, else PoCL)");
+      command->add_option("--weights-precision", arguments->weights_precision,
+                          "Stored W: float32 (default) or float16");
+      command->add_option("--residual-precision", arguments->residual_precision,
+                          "Stored residual values: float32 (default) or float16");
+      command->add_option(
+          "--report", arguments->report,
+          "Write a JSON report (times, iterations, bytes, errors, sparseness, memory)");
+      command->add_option(
+          "--target-error", arguments->target_error,
+          "Choose terms, clusters and per-function residual lengths that reach this "
+          "relative error (paper Eq. 16, masked functions) with the fewest bytes");
+      command->add_flag("--resume", arguments->resume,
+                        "Continue from OUT.checkpoint, written after every clustering iteration");
+      command->callback([arguments] { run_compress(*arguments); });
+    }};
 
 }  // namespace
 }  // namespace relume

@@ -4,11 +4,11 @@
 // light_directions.txt, light_intensities.txt and mask.png.
 #include <cstdio>
 #include <memory>
+#include <relume/field.hpp>
 
 #include "command_registry.hpp"
-#include "core/console.hpp"
 #include "container/container.hpp"
-#include <relume/field.hpp>
+#include "core/console.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {

@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <relume/error.hpp>
 
 #include "command_registry.hpp"
 #include "core/console.hpp"
-#include <relume/error.hpp>
-#include "l1/factorization.hpp"
-#include "field/npy.hpp"
 #include "core/progress.hpp"
+#include "field/npy.hpp"
+#include "l1/factorization.hpp"
 
 namespace relume {
 namespace {

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.hpp"
-#include "json_report.hpp"
 #include "container/container.hpp"
+#include "json_report.hpp"
 
 namespace relume {
 namespace {

@@ -2,13 +2,12 @@
 #include "light_source_options.hpp"
 
 #include <cstdio>
-
-#include "lighting/environment_map.hpp"
 #include <relume/error.hpp>
-#include "field/light_file.hpp"
 #include <relume/lighting.hpp>
 
 #include "core/console.hpp"
+#include "field/light_file.hpp"
+#include "lighting/environment_map.hpp"
 
 namespace relume {
 
@@ -21,15 +20,18 @@ void add_light_source_options(CLI::App& command, LightSourceOptions& options) {
                                  "format OpenImageIO reads)");
   lights->excludes(env);
   env->excludes(lights);
-  command.add_option("--layout", options.layout,
-                     "Environment map layout: auto (from the aspect ratio), latlong, angular, cross")
+  command
+      .add_option("--layout", options.layout,
+                  "Environment map layout: auto (from the aspect ratio), latlong, angular, cross")
       ->capture_default_str();
-  command.add_option("--rotate", options.rotate_degrees,
-                     "Rotate the environment about the up axis (+y) by this many degrees")
+  command
+      .add_option("--rotate", options.rotate_degrees,
+                  "Rotate the environment about the up axis (+y) by this many degrees")
       ->capture_default_str();
 }
 
-LightRgb resolve_light_vector(const LightSourceOptions& options, const LightDirections& directions) {
+LightRgb resolve_light_vector(const LightSourceOptions& options,
+                              const LightDirections& directions) {
   if (options.lights_file.empty() && options.environment.empty())
     throw Error("give the light source: --lights FILE or --env MAP");
   if (!options.environment.empty()) {

@@ -4,9 +4,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <string>
-
 #include <relume/field.hpp>
+#include <string>
 
 namespace relume {
 

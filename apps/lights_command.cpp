@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <relume/lighting.hpp>
 
 #include "command_registry.hpp"
 #include "core/console.hpp"
-#include "lighting/environment_map.hpp"
 #include "field/light_file.hpp"
-#include <relume/lighting.hpp>
+#include "lighting/environment_map.hpp"
 
 namespace relume {
 namespace {

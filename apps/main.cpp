@@ -51,7 +51,8 @@ int print_help(CLI::App& app, int argc, char** argv) {
     std::printf("%s", app.get_subcommand(name)->help("relume").c_str());
     return 0;
   } catch (const CLI::OptionNotFound&) {
-    std::fprintf(stderr, "relume: %s\n", relume::unknown_command_message(name, command_names(app)).c_str());
+    std::fprintf(stderr, "relume: %s\n",
+                 relume::unknown_command_message(name, command_names(app)).c_str());
     return exit_usage;
   }
 }

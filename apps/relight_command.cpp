@@ -3,15 +3,15 @@
 // an uncompressed field (folder or .lp) by the double-precision reference, the ground truth the
 // compressed paths are tested against.
 #include <filesystem>
+#include <relume/field.hpp>
+#include <relume/image.hpp>
+#include <relume/relight.hpp>
 
 #include "command_registry.hpp"
-#include "core/console.hpp"
-#include "renderer_options.hpp"
 #include "container/container.hpp"
-#include <relume/field.hpp>
-#include <relume/relight.hpp>
-#include <relume/image.hpp>
+#include "core/console.hpp"
 #include "light_source_options.hpp"
+#include "renderer_options.hpp"
 
 namespace relume {
 namespace {
@@ -52,27 +52,32 @@ void run_relight(const RelightOptions& options) {
   write_image(options.output, image, {options.exposure});
 }
 
-const CommandRegistration registration{30, [](CLI::App& app) {
-  auto options = std::make_shared<RelightOptions>();
-  auto* command = app.add_subcommand(
-      "relight", "Relight a reflectance field under an environment map or a light vector file");
-  command->add_option("input", options->input,
-                      "A .relume container, or an uncompressed field: a folder (DiLiGenT layout) or an "
-                      "RTI .lp file")
-      ->required();
-  add_light_source_options(*command, options->light_source);
-  add_renderer_options(*command, options->renderer);
-  command->add_option("-o,--output", options->output,
-                      "Output image: .exr/.hdr/.tif are linear float, .png/.jpg are exposed and "
-                      "sRGB-encoded")
-      ->required();
-  command->add_option("--exposure", options->exposure,
-                      "Exposure in stops applied to 8-bit outputs (default 0)");
-  command->add_flag("--srgb", options->srgb_input,
-                    "Decode 8-bit input images of an uncompressed field as sRGB (default: linear)");
-  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
-  command->callback([options] { run_relight(*options); });
-}};
+const CommandRegistration registration{
+    30, [](CLI::App& app) {
+      auto options = std::make_shared<RelightOptions>();
+      auto* command = app.add_subcommand(
+          "relight", "Relight a reflectance field under an environment map or a light vector file");
+      command
+          ->add_option(
+              "input", options->input,
+              "A .relume container, or an uncompressed field: a folder (DiLiGenT layout) or an "
+              "RTI .lp file")
+          ->required();
+      add_light_source_options(*command, options->light_source);
+      add_renderer_options(*command, options->renderer);
+      command
+          ->add_option("-o,--output", options->output,
+                       "Output image: .exr/.hdr/.tif are linear float, .png/.jpg are exposed and "
+                       "sRGB-encoded")
+          ->required();
+      command->add_option("--exposure", options->exposure,
+                          "Exposure in stops applied to 8-bit outputs (default 0)");
+      command->add_flag(
+          "--srgb", options->srgb_input,
+          "Decode 8-bit input images of an uncompressed field as sRGB (default: linear)");
+      command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+      command->callback([options] { run_relight(*options); });
+    }};
 
 }  // namespace
 }  // namespace relume

@@ -7,21 +7,20 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-
 #include <nlohmann/json.hpp>
-
-#include "command_registry.hpp"
-#include "json_report.hpp"
-#include "core/console.hpp"
-#include "relight/compressed_relight_reference.hpp"
-#include "renderer_options.hpp"
-#include "container/container.hpp"
-#include "lighting/environment_map.hpp"
 #include <relume/error.hpp>
-#include "image/image_difference.hpp"
 #include <relume/image.hpp>
 #include <relume/lighting.hpp>
+
+#include "command_registry.hpp"
+#include "container/container.hpp"
+#include "core/console.hpp"
 #include "core/progress.hpp"
+#include "image/image_difference.hpp"
+#include "json_report.hpp"
+#include "lighting/environment_map.hpp"
+#include "relight/compressed_relight_reference.hpp"
+#include "renderer_options.hpp"
 
 namespace relume {
 namespace {
@@ -126,8 +125,10 @@ void run_sequence(const SequenceOptions& options) {
     for (std::size_t b = 0; b < count; ++b) {
       const int frame = static_cast<int>(first + b);
       write_image(frame_path(options.output_pattern, frame), images[b], {options.exposure});
-      nlohmann::ordered_json record = {{"frame", frame}, {"file", frame_path(options.output_pattern, frame)}};
-      if (options.compare) record["error"] = image_difference(images[b], references[b]).relative_squared_error;
+      nlohmann::ordered_json record = {{"frame", frame},
+                                       {"file", frame_path(options.output_pattern, frame)}};
+      if (options.compare)
+        record["error"] = image_difference(images[b], references[b]).relative_squared_error;
       frames.push_back(record);
       progress.advance();
     }
@@ -147,59 +148,62 @@ void run_sequence(const SequenceOptions& options) {
   }
   if (!options.report.empty()) {
     const nlohmann::ordered_json report = {{"device", renderer.device_name()},
-                                   {"frames", lights.size()},
-                                   {"batch", options.batch},
-                                   {"residual_cap", cap == full_residual
-                                                        ? -1
-                                                        : cap},
-                                   {"relight_seconds", relight_seconds},
-                                   {"frames_per_second", fps},
-                                   {"kernel_gbps", gbps},
-                                   {"per_frame", frames}};
+                                           {"frames", lights.size()},
+                                           {"batch", options.batch},
+                                           {"residual_cap", cap == full_residual ? -1 : cap},
+                                           {"relight_seconds", relight_seconds},
+                                           {"frames_per_second", fps},
+                                           {"kernel_gbps", gbps},
+                                           {"per_frame", frames}};
     write_json_report(options.report, report);
   }
 }
 
-const CommandRegistration registration{35, [](CLI::App& app) {
-  auto options = std::make_shared<SequenceOptions>();
-  auto* command = app.add_subcommand(
-      "relight-sequence",
-      "Relight a .relume container under a rotating environment or a list of maps, one image per "
-      "frame");
-  command->add_option("input", options->input, "The .relume container")->required();
-  auto* env = command->add_option("--env", options->environment,
-                                  "Environment map rotated about +y by --rotate-step per frame");
-  auto* list = command->add_option("--env-list", options->environment_list,
-                                   "Text file naming one environment map per frame (paths "
-                                   "relative to the list's folder)");
-  env->excludes(list);
-  list->excludes(env);
-  command->add_option("--layout", options->layout, "Map layout: auto, latlong, angular, cross")
-      ->capture_default_str();
-  command->add_option("--frames", options->frames, "Frames to render with --env")
-      ->capture_default_str();
-  command->add_option("--rotate", options->rotate_start, "Rotation of the first frame, degrees")
-      ->capture_default_str();
-  command->add_option("--rotate-step", options->rotate_step, "Rotation added per frame, degrees")
-      ->capture_default_str();
-  command->add_option("-o,--output", options->output_pattern,
-                      "Frame file pattern with one %d conversion, e.g. frames/%04d.exr or .png")
-      ->required();
-  command->add_option("--batch", options->batch,
-                      "Frames relit together in one pass over the compressed data")
-      ->capture_default_str();
-  command->add_option("--exposure", options->exposure, "Exposure in stops for 8-bit outputs")
-      ->capture_default_str();
-  command->add_flag("--compare", options->compare,
-                    "Also render each frame with the full residual and report the error");
-  command->add_option("--report", options->report, "Write a JSON report of the run");
-  add_renderer_options(*command, options->renderer);
-  command->callback([options] {
-    if (options->environment.empty() && options->environment_list.empty())
-      throw Error("give --env MAP (rotating) or --env-list FILE");
-    run_sequence(*options);
-  });
-}};
+const CommandRegistration registration{
+    35, [](CLI::App& app) {
+      auto options = std::make_shared<SequenceOptions>();
+      auto* command = app.add_subcommand("relight-sequence",
+                                         "Relight a .relume container under a rotating environment "
+                                         "or a list of maps, one image per "
+                                         "frame");
+      command->add_option("input", options->input, "The .relume container")->required();
+      auto* env =
+          command->add_option("--env", options->environment,
+                              "Environment map rotated about +y by --rotate-step per frame");
+      auto* list = command->add_option("--env-list", options->environment_list,
+                                       "Text file naming one environment map per frame (paths "
+                                       "relative to the list's folder)");
+      env->excludes(list);
+      list->excludes(env);
+      command->add_option("--layout", options->layout, "Map layout: auto, latlong, angular, cross")
+          ->capture_default_str();
+      command->add_option("--frames", options->frames, "Frames to render with --env")
+          ->capture_default_str();
+      command->add_option("--rotate", options->rotate_start, "Rotation of the first frame, degrees")
+          ->capture_default_str();
+      command
+          ->add_option("--rotate-step", options->rotate_step, "Rotation added per frame, degrees")
+          ->capture_default_str();
+      command
+          ->add_option("-o,--output", options->output_pattern,
+                       "Frame file pattern with one %d conversion, e.g. frames/%04d.exr or .png")
+          ->required();
+      command
+          ->add_option("--batch", options->batch,
+                       "Frames relit together in one pass over the compressed data")
+          ->capture_default_str();
+      command->add_option("--exposure", options->exposure, "Exposure in stops for 8-bit outputs")
+          ->capture_default_str();
+      command->add_flag("--compare", options->compare,
+                        "Also render each frame with the full residual and report the error");
+      command->add_option("--report", options->report, "Write a JSON report of the run");
+      add_renderer_options(*command, options->renderer);
+      command->callback([options] {
+        if (options->environment.empty() && options->environment_list.empty())
+          throw Error("give --env MAP (rotating) or --env-list FILE");
+        run_sequence(*options);
+      });
+    }};
 
 }  // namespace
 }  // namespace relume

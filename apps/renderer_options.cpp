@@ -11,9 +11,10 @@ void add_renderer_options(CLI::App& command, RendererOptions& options) {
                      "default RELUME_DEVICE, else a GPU, else PoCL's CPU device");
   command.add_flag("--cpu", options.relighter.cpu_reference,
                    "Relight with the plain C++ reference instead of OpenCL");
-  command.add_option("--residual", options.residual,
-                     "Residual entries used per function: 'all', a count N, or P% of the lights "
-                     "(fewer is faster and less accurate)")
+  command
+      .add_option("--residual", options.residual,
+                  "Residual entries used per function: 'all', a count N, or P% of the lights "
+                  "(fewer is faster and less accurate)")
       ->capture_default_str();
 }
 

@@ -3,9 +3,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <string>
-
 #include <relume/relight.hpp>
+#include <string>
 
 namespace relume {
 

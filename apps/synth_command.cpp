@@ -1,15 +1,16 @@
 // `relume synth`: renders a synthetic OLAT set with exact ground truth (spheres on a ground disc,
-// see lib/synth/synthetic_scene.hpp) and writes it as a field folder that every other command reads.
+// see lib/synth/synthetic_scene.hpp) and writes it as a field folder that every other command
+// reads.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include <string>
 
 #include "command_registry.hpp"
 #include "core/console.hpp"
-#include <relume/error.hpp>
-#include <relume/field.hpp>
 #include "core/progress.hpp"
 #include "synth/synthetic_scene.hpp"
 

@@ -8,14 +8,14 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <relume/error.hpp>
 
 #include "bench/bench_container_sweep.hpp"
 #include "bench/bench_runs.hpp"
 #include "command_registry.hpp"
-#include "json_report.hpp"
 #include "container/container.hpp"
-#include <relume/error.hpp>
 #include "core/progress.hpp"
+#include "json_report.hpp"
 #include "model/random_compressed_field.hpp"
 
 namespace relume {

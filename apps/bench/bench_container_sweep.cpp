@@ -3,8 +3,9 @@
 
 #include <relume/error.hpp>
 #include <relume/field.hpp>
-#include "model/reconstruct_field.hpp"
+
 #include "compress/residual_selection.hpp"
+#include "model/reconstruct_field.hpp"
 
 namespace relume {
 

@@ -4,11 +4,11 @@
 #pragma once
 
 #include <filesystem>
+#include <relume/compressed_field.hpp>
 #include <string>
 #include <vector>
 
 #include "bench/bench_records.hpp"
-#include <relume/compressed_field.hpp>
 
 namespace relume {
 

@@ -10,15 +10,15 @@
 #include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <relume/error.hpp>
 #include <sstream>
 
 #include "command_registry.hpp"
-#include "json_report.hpp"
 #include "core/elapsed_time.hpp"
-#include <relume/error.hpp>
+#include "core/progress.hpp"
+#include "json_report.hpp"
 #include "l1/factorization.hpp"
 #include "l1/planted_matrix.hpp"
-#include "core/progress.hpp"
 
 namespace relume {
 namespace {

@@ -9,10 +9,9 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
+#include <string>
 
 namespace relume {
 

@@ -1,4 +1,5 @@
-// relume/compressed_field.hpp: a reflectance field compressed by clustered sparse residual factorization (paper Eq. 2):
+// relume/compressed_field.hpp: a reflectance field compressed by clustered sparse residual
+// factorization (paper Eq. 2):
 //   R[p,:] ~ W[p,:] * F^{c(p)} + E[p,:]
 // Only the functions that a scene needs are stored ("stored rows"): functions outside the mask and
 // all-zero functions have no row and relight to zero. This is what the container file holds and
@@ -10,9 +11,8 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <vector>
-
 #include <relume/field.hpp>
+#include <vector>
 
 namespace relume {
 

@@ -10,11 +10,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <relume/compressed_field.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <relume/compressed_field.hpp>
 
 namespace relume {
 
@@ -53,8 +52,9 @@ struct ContainerLayout {
 };
 
 // Writes atomically (temporary file, fsync, rename). Throws Error, writing nothing, if the field is
-// inconsistent (lib/model/compressed_field_checks.hpp), the parameters are not a JSON object, a value does not
-// fit the chosen precision (|x| > 65504 for half) or the lights do not fit the chosen index width.
+// inconsistent (lib/model/compressed_field_checks.hpp), the parameters are not a JSON object, a
+// value does not fit the chosen precision (|x| > 65504 for half) or the lights do not fit the
+// chosen index width.
 void write_container(const std::filesystem::path& path, const CompressedField& field,
                      const ContainerOptions& options = {});
 

@@ -15,10 +15,9 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <relume/image.hpp>
 #include <string>
 #include <vector>
-
-#include <relume/image.hpp>
 
 namespace relume {
 
@@ -31,11 +30,11 @@ struct ReflectanceField {
   int width = 0;
   int height = 0;
   int channels = 0;
-  RowMatrixF values;                 // functions x lights
-  std::vector<std::uint8_t> mask;    // width * height, 1 = inside the object
-  LightDirections directions;        // unit vectors towards each light, camera frame (x right,
-                                     // y up, z towards the camera)
-  LightRgb intensities;              // per-light RGB the images were divided by (ones if none)
+  RowMatrixF values;                     // functions x lights
+  std::vector<std::uint8_t> mask;        // width * height, 1 = inside the object
+  LightDirections directions;            // unit vectors towards each light, camera frame (x right,
+                                         // y up, z towards the camera)
+  LightRgb intensities;                  // per-light RGB the images were divided by (ones if none)
   std::vector<std::string> image_names;  // one per light, for messages and write-back
 
   int lights() const { return static_cast<int>(values.cols()); }
@@ -52,7 +51,8 @@ struct FieldLoadOptions {
 };
 
 // `path` is a field folder or an .lp file. Throws Error naming the file, line or pixel at fault.
-ReflectanceField load_field(const std::filesystem::path& path, const FieldLoadOptions& options = {});
+ReflectanceField load_field(const std::filesystem::path& path,
+                            const FieldLoadOptions& options = {});
 
 // Writes a field folder that load_field reads back: one EXR per light (001.exr ...),
 // filenames.txt, light_directions.txt, light_intensities.txt (the field's intensities; its values

@@ -12,12 +12,11 @@
 
 #include <limits>
 #include <memory>
-#include <string>
-#include <vector>
-
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
 #include <relume/image.hpp>
+#include <string>
+#include <vector>
 
 namespace relume {
 

@@ -5,9 +5,9 @@
 
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <relume/error.hpp>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
 
 namespace relume {
 namespace {
@@ -25,14 +25,11 @@ void write_checkpoint(const std::filesystem::path& path, const std::string& fing
                       const ClusterModel& model, const std::vector<IterationRecord>& iterations) {
   nlohmann::json records = nlohmann::json::array();
   for (const IterationRecord& record : iterations)
-    records.push_back({record.iteration, record.objective, record.changed, record.clusters,
-                       record.seconds});
-  const nlohmann::json header = {{"fingerprint", fingerprint},
-                                 {"clusters", model.clusters},
-                                 {"terms", model.terms},
-                                 {"lights", model.lights},
-                                 {"rows", model.assignment.size()},
-                                 {"iterations", records}};
+    records.push_back(
+        {record.iteration, record.objective, record.changed, record.clusters, record.seconds});
+  const nlohmann::json header = {
+      {"fingerprint", fingerprint}, {"clusters", model.clusters},      {"terms", model.terms},
+      {"lights", model.lights},     {"rows", model.assignment.size()}, {"iterations", records}};
   std::string bytes = checkpoint_magic + header.dump() + "\n";
   append_raw(bytes, model.bases.data(), model.bases.size());
   append_raw(bytes, model.assignment.data(), model.assignment.size());
@@ -77,7 +74,8 @@ ClusteringResume read_checkpoint(const std::filesystem::path& path,
       resume.iterations.push_back(done);
     }
     const std::size_t basis_values = std::size_t(model.clusters) * model.terms * model.lights;
-    const std::size_t expected = line_end + 1 + basis_values * 4 + rows * 4 + rows * model.terms * 4;
+    const std::size_t expected =
+        line_end + 1 + basis_values * 4 + rows * 4 + rows * model.terms * 4;
     if (model.clusters < 1 || model.terms < 1 || model.lights < 1 || bytes.size() != expected)
       throw fail("size " + std::to_string(bytes.size()) + " bytes does not match its header (" +
                  std::to_string(expected) + " expected)");
@@ -94,7 +92,8 @@ ClusteringResume read_checkpoint(const std::filesystem::path& path,
     throw fail(std::string("damaged header: ") + e.what());
   }
   for (const std::int32_t k : model.assignment)
-    if (k < 0 || k >= model.clusters) throw fail("cluster id " + std::to_string(k) + " out of range");
+    if (k < 0 || k >= model.clusters)
+      throw fail("cluster id " + std::to_string(k) + " out of range");
   return resume;
 }
 

@@ -2,10 +2,10 @@
 #include "compress/cluster_model.hpp"
 
 #include <cmath>
-
 #include <relume/error.hpp>
-#include "model/haar_transform.hpp"
+
 #include "core/parallel.hpp"
+#include "model/haar_transform.hpp"
 
 namespace relume {
 

@@ -6,10 +6,9 @@
 #pragma once
 
 #include <cstdint>
+#include <relume/field.hpp>
 #include <string>
 #include <vector>
-
-#include <relume/field.hpp>
 
 namespace relume {
 

@@ -4,23 +4,23 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <numeric>
+#include <relume/error.hpp>
 
 #include "compress/cluster_assignment.hpp"
 #include "compress/cluster_basis.hpp"
-#include <relume/error.hpp>
 #include "core/parallel.hpp"
 
 namespace relume {
 namespace {
 
 // Moves the rows of clusters with fewer than `minimum` rows to their best surviving cluster.
-void merge_small_clusters(const WorkingRows& rows, ClusterModel& model, int minimum,
-                          int candidates, const IrlsSettings& settings, unsigned threads,
+void merge_small_clusters(const WorkingRows& rows, ClusterModel& model, int minimum, int candidates,
+                          const IrlsSettings& settings, unsigned threads,
                           SizeRuleChanges& changes) {
   std::vector<std::size_t> size(std::size_t(model.clusters), 0);
   for (const std::int32_t k : model.assignment) ++size[static_cast<std::size_t>(k)];
-  const std::size_t largest = static_cast<std::size_t>(
-      std::max_element(size.begin(), size.end()) - size.begin());
+  const std::size_t largest =
+      static_cast<std::size_t>(std::max_element(size.begin(), size.end()) - size.begin());
   std::vector<std::uint8_t> survives(size.size(), 1);
   for (std::size_t k = 0; k < size.size(); ++k) {
     if (k != largest && size[k] < std::size_t(std::max(minimum, 1))) {
@@ -66,8 +66,8 @@ void merge_small_clusters(const WorkingRows& rows, ClusterModel& model, int mini
 
 // Splits `members` of cluster k at the median of their coordinate along the direction the
 // cluster's basis explains worst; returns the half that moves to a new cluster.
-std::vector<std::uint32_t> split_off_half(const WorkingRows& rows, const ClusterModel& model,
-                                          int k, std::vector<std::uint32_t>& members) {
+std::vector<std::uint32_t> split_off_half(const WorkingRows& rows, const ClusterModel& model, int k,
+                                          std::vector<std::uint32_t>& members) {
   const Eigen::MatrixXf q = orthonormal_columns(model.basis(k), model.terms, model.lights);
   RowMatrixF leftover(static_cast<Eigen::Index>(members.size()), model.lights);
   for (std::size_t p = 0; p < members.size(); ++p) {
@@ -132,9 +132,8 @@ void split_large_clusters(const WorkingRows& rows, ClusterModel& model, int maxi
 
 void validate_size_limits(const ClusterSizeLimits& limits, int terms) {
   if (limits.minimum < -1 || limits.maximum < 0)
-    throw Error("cluster size limits must be >= 0, got minimum " +
-                std::to_string(limits.minimum) + " and maximum " +
-                std::to_string(limits.maximum));
+    throw Error("cluster size limits must be >= 0, got minimum " + std::to_string(limits.minimum) +
+                " and maximum " + std::to_string(limits.maximum));
   const int minimum = limits.minimum_for(terms);
   if (limits.maximum > 0 && limits.maximum < 2 * std::max(minimum, 1))
     throw Error("maximum cluster size " + std::to_string(limits.maximum) +
@@ -147,7 +146,8 @@ SizeRuleChanges enforce_cluster_sizes(const WorkingRows& rows, ClusterModel& mod
                                       const IrlsSettings& settings, unsigned threads) {
   SizeRuleChanges changes;
   if (model.clusters == 0) return changes;
-  merge_small_clusters(rows, model, limits.minimum_for(model.terms), candidates, settings, threads, changes);
+  merge_small_clusters(rows, model, limits.minimum_for(model.terms), candidates, settings, threads,
+                       changes);
   if (limits.maximum > 0)
     split_large_clusters(rows, model, limits.maximum, settings, threads, changes);
   return changes;

@@ -5,11 +5,11 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <relume/error.hpp>
 
 #include "core/elapsed_time.hpp"
-#include <relume/error.hpp>
-#include "model/haar_transform.hpp"
 #include "core/parallel.hpp"
+#include "model/haar_transform.hpp"
 
 namespace relume {
 namespace {
@@ -82,11 +82,13 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
       if (transform == BasisTransform::haar) haar_forward(row.data(), lights, 1);
       const float norm = prepared.rows.norms[r];
       float* weights = out.weights.row(static_cast<Eigen::Index>(r)).data();
-      for (int j = 0; j < terms; ++j) weights[j] = model.weights(static_cast<Eigen::Index>(r), j) * norm;
+      for (int j = 0; j < terms; ++j)
+        weights[j] = model.weights(static_cast<Eigen::Index>(r), j) * norm;
       const float* basis = model.basis(model.assignment[r]);
       for (int i = 0; i < lights; ++i) {
         double value = row[i];
-        for (int j = 0; j < terms; ++j) value -= double(weights[j]) * basis[std::size_t(j) * lights + i];
+        for (int j = 0; j < terms; ++j)
+          value -= double(weights[j]) * basis[std::size_t(j) * lights + i];
         row[i] = static_cast<float>(value);
         for (std::size_t level = 0; level < levels; ++level)
           sparse_counts[b][level] += std::fabs(value) <= sparseness_thresholds[level] * norm;
@@ -149,15 +151,16 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
     stats.clustering.iterations = resume->iterations;
     int done = 0;
     for (const auto& record : resume->iterations) done += record.iteration > 0;
-    const int cap = options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
+    const int cap =
+        options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
     iterate_clusters(prepared.rows, model, clustering, std::max(0, cap - done), stats.clustering,
                      hook);
   } else if (options.multires_levels > 0) {
     stats.multires.emplace();
-    model = multires_start(field, prepared, options.multires_levels, haar, clustering,
-                           *stats.multires);
-    iterate_clusters(prepared.rows, model, clustering, options.refine_iterations,
-                     stats.clustering, hook);
+    model =
+        multires_start(field, prepared, options.multires_levels, haar, clustering, *stats.multires);
+    iterate_clusters(prepared.rows, model, clustering, options.refine_iterations, stats.clustering,
+                     hook);
   } else {
     model = cluster_rows(prepared.rows, clustering, stats.clustering, hook);
   }
@@ -166,9 +169,9 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
 
   start = Clock::now();
   stats.residual_entries = options.residual.entries_for(field.lights());
-  CompressedField out = build_compressed_field(field, prepared, model, options.transform,
-                                               stats.residual_entries, options.residual_threshold,
-                                               {}, stats, clustering.threads);
+  CompressedField out =
+      build_compressed_field(field, prepared, model, options.transform, stats.residual_entries,
+                             options.residual_threshold, {}, stats, clustering.threads);
   stats.residual_seconds = seconds_since(start);
   return out;
 }

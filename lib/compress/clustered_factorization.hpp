@@ -2,17 +2,18 @@
 //   R[p,:] ~ W[p,:] F^{c(p)} + E[p,:]
 // The functions a scene needs (inside the mask, not all zero; each colour channel its own
 // function) are optionally moved into the Haar basis (paper Eq. 3), scaled to unit norm, clustered
-// by L1 factorization (lib/compress/cluster_iterations.hpp, optionally multi-resolution), and their residual
-// is cut to the largest entries (lib/compress/residual_selection.hpp). The result is a CompressedField.
+// by L1 factorization (lib/compress/cluster_iterations.hpp, optionally multi-resolution), and their
+// residual is cut to the largest entries (lib/compress/residual_selection.hpp). The result is a
+// CompressedField.
 #pragma once
 
 #include <optional>
+#include <relume/compressed_field.hpp>
+#include <relume/field.hpp>
 #include <vector>
 
 #include "compress/cluster_iterations.hpp"
-#include <relume/compressed_field.hpp>
 #include "compress/multires_clustering.hpp"
-#include <relume/field.hpp>
 #include "compress/residual_selection.hpp"
 
 namespace relume {
@@ -22,8 +23,8 @@ struct CompressionOptions {
   ResidualBudget residual;          // entries kept per function
   float residual_threshold = 0.0f;  // entries with |value| <= this (field units) are dropped
   BasisTransform transform = BasisTransform::identity;
-  int multires_levels = 0;     // cluster a field downsampled this many times first
-  int refine_iterations = 2;   // full-resolution iterations after multi-resolution clustering
+  int multires_levels = 0;    // cluster a field downsampled this many times first
+  int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering
 };
 
 // A clustering to continue from (a checkpoint): the model and the iterations already done.

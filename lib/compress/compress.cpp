@@ -1,8 +1,7 @@
 // Implementation of the public compress() (relume/compress.hpp) over compress_field.
-#include <relume/compress.hpp>
-
 #include <cmath>
 #include <memory>
+#include <relume/compress.hpp>
 #include <relume/error.hpp>
 
 #include "compress/clustered_factorization.hpp"

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
-
 #include <relume/error.hpp>
 
 namespace relume {
@@ -82,7 +81,9 @@ TargetSearch compress_to_target_error(const ReflectanceField& field,
       candidate_stats.residual_nonzeros = compressed.residual.nonzeros();
       const std::uint64_t bytes = plan_container(compressed, container).file_bytes;
       const double mean_entries =
-          compressed.stored_rows() ? double(compressed.residual.nonzeros()) / compressed.stored_rows() : 0;
+          compressed.stored_rows()
+              ? double(compressed.residual.nonzeros()) / compressed.stored_rows()
+              : 0;
       tried.push_back({{"terms", terms},
                        {"clusters", compressed.clusters},
                        {"bytes", bytes},
@@ -109,9 +110,10 @@ TargetSearch compress_to_target_error(const ReflectanceField& field,
        "with the largest e^2/||R[p,:]||^2 kept across all functions until the mean relative error "
        "(Eq. 16) over the stored functions reaches the target; the smallest container wins"},
       {"tried", tried},
-      {"chosen", {{"terms", best.options.clustering.terms},
-                  {"clusters", best.field.clusters},
-                  {"bytes", best_bytes}}}};
+      {"chosen",
+       {{"terms", best.options.clustering.terms},
+        {"clusters", best.field.clusters},
+        {"bytes", best_bytes}}}};
   return best;
 }
 

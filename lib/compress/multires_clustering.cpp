@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <chrono>
-
-#include "field/downsample.hpp"
-#include "core/elapsed_time.hpp"
 #include <relume/error.hpp>
+
+#include "core/elapsed_time.hpp"
 #include "core/progress.hpp"
+#include "field/downsample.hpp"
 
 namespace relume {
 namespace {

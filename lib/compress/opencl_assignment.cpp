@@ -2,10 +2,9 @@
 #include "compress/opencl_assignment.hpp"
 
 #include <cstdio>
+#include <relume/error.hpp>
 #include <string>
 #include <utility>
-
-#include <relume/error.hpp>
 
 namespace relume {
 
@@ -25,8 +24,7 @@ OpenClAssigner::OpenClAssigner(const std::string& device_selector, const IrlsSet
                                int light_vector)
     : OpenClAssigner(select_opencl_device(device_selector), settings, light_vector) {}
 
-OpenClAssigner::OpenClAssigner(OpenClDevice device, const IrlsSettings& settings,
-                               int light_vector)
+OpenClAssigner::OpenClAssigner(OpenClDevice device, const IrlsSettings& settings, int light_vector)
     : settings_(settings),
       light_vector_(light_vector ? light_vector : default_light_vector(device)) {
   if (light_vector_ != 4 && light_vector_ != 8 && light_vector_ != 16)
@@ -53,9 +51,8 @@ AssignmentResult OpenClAssigner::assign(const WorkingRows& rows, const ClusterMo
   result.objective.assign(count, 0.0f);
   result.weights.setZero(static_cast<Eigen::Index>(count), model.terms);
   if (count == 0) return result;
-  const bool fp64 =
-      context_->device().device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") !=
-      std::string::npos;
+  const bool fp64 = context_->device().device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") !=
+                    std::string::npos;
   char options[256];
   std::snprintf(options, sizeof options,
                 "-DTERMS=%d -DLIGHTS=%d -DWIDTH=%d -DITERATIONS=%d -DEPSILON=%.9gf -DUSE_DOUBLE=%d "
@@ -67,7 +64,8 @@ AssignmentResult OpenClAssigner::assign(const WorkingRows& rows, const ClusterMo
     cl::CommandQueue& queue = context_->queue();
     const std::size_t row_bytes = count * model.lights * sizeof(float);
     double sample = 0;
-    for (std::size_t i = 0; i < std::size_t(rows.values.size()); i += 997) sample += rows.values.data()[i];
+    for (std::size_t i = 0; i < std::size_t(rows.values.size()); i += 997)
+      sample += rows.values.data()[i];
     if (!rows_buffer_ || uploaded_rows_ != rows.values.data() || uploaded_count_ != count ||
         uploaded_sample_ != sample) {
       // A CPU device reads the rows where they are: no second copy of the largest array.

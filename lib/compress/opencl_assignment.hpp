@@ -1,7 +1,7 @@
 // The reassignment step of clustered factorization as an OpenCL kernel (kernels/assign.cl): the
-// same IRLS fits and choice as the CPU path (lib/compress/cluster_assignment.hpp), one work-item per
-// function, on PoCL's CPU device by default or on any GPU. The rows are uploaded once and kept on
-// the device while the same rows are assigned again.
+// same IRLS fits and choice as the CPU path (lib/compress/cluster_assignment.hpp), one work-item
+// per function, on PoCL's CPU device by default or on any GPU. The rows are uploaded once and kept
+// on the device while the same rows are assigned again.
 #pragma once
 
 #include <memory>

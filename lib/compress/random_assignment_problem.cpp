@@ -2,9 +2,8 @@
 #include "compress/random_assignment_problem.hpp"
 
 #include <random>
-#include <string>
-
 #include <relume/error.hpp>
+#include <string>
 
 namespace relume {
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-
 #include <relume/error.hpp>
 
 namespace relume {
@@ -36,8 +35,7 @@ ResidualBudget parse_residual_budget(const std::string& text) {
   ResidualBudget budget;
   if (is_percent) {
     const double value = std::strtod(number.c_str(), &end);
-    if (end != number.c_str() + number.size() || !std::isfinite(value) || value < 0 ||
-        value > 100)
+    if (end != number.c_str() + number.size() || !std::isfinite(value) || value < 0 || value > 100)
       throw bad();
     budget.percent = value;
   } else {

@@ -4,17 +4,16 @@
 // prefix of a row is the best residual of that length.
 #pragma once
 
+#include <relume/compressed_field.hpp>
 #include <string>
 #include <vector>
-
-#include <relume/compressed_field.hpp>
 
 namespace relume {
 
 // How many residual entries each function keeps: a count, or a percentage of the lights.
 struct ResidualBudget {
-  int entries = 0;         // used when percent < 0
-  double percent = -1.0;   // >= 0: round(percent / 100 * lights) entries
+  int entries = 0;        // used when percent < 0
+  double percent = -1.0;  // >= 0: round(percent / 100 * lights) entries
 
   // Entries per function for a field of `lights` lights (never more than `lights`).
   int entries_for(int lights) const;

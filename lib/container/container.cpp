@@ -7,14 +7,14 @@
 #include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <relume/error.hpp>
+#include <relume/version.hpp>
 
-#include "core/atomic_file.hpp"
-#include "model/compressed_field_checks.hpp"
 #include "container/container_bit_set.hpp"
 #include "container/container_bytes.hpp"
 #include "container/crc32.hpp"
-#include <relume/error.hpp>
-#include <relume/version.hpp>
+#include "core/atomic_file.hpp"
+#include "model/compressed_field_checks.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;

@@ -4,11 +4,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <relume/container.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <relume/container.hpp>
 #include "model/compressed_field_checks.hpp"  // validate_compressed_field
 #include "model/reconstruct_field.hpp"
 

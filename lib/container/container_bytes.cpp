@@ -4,7 +4,6 @@
 #include <Imath/half.h>
 
 #include <bit>
-
 #include <relume/error.hpp>
 
 namespace relume {

@@ -5,9 +5,8 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <sstream>
-
 #include <relume/error.hpp>
+#include <sstream>
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -28,15 +27,16 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
     throw Error("cannot write " + target.string() + ": folder " + parent.string() +
                 " does not exist");
   // Keep the extension last: image writers choose the format from it.
-  const fs::path temp = parent / (".tmp-" + std::to_string(::getpid()) + "-" +
-                                  target.filename().string());
+  const fs::path temp =
+      parent / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
   try {
     write(temp);
     fsync_path(temp);
     std::error_code ec;
     fs::rename(temp, target, ec);
-    if (ec) throw Error("cannot rename " + temp.string() + " to " + target.string() + ": " +
-                        ec.message());
+    if (ec)
+      throw Error("cannot rename " + temp.string() + " to " + target.string() + ": " +
+                  ec.message());
   } catch (...) {
     std::error_code ignored;
     fs::remove(temp, ignored);

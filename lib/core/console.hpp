@@ -1,7 +1,8 @@
 // What relume says on the terminal besides its results: one process-wide verbosity that the
 // command's global -q/--quiet and -v/--verbose set, honoured by progress bars, notes and details
-// (RELUME_QUIET=1 in the environment silences only the progress bars: lib/core/progress.hpp). Results a command was asked for (info's
-// description, a JSON file, images) are not messages and are written whatever the verbosity.
+// (RELUME_QUIET=1 in the environment silences only the progress bars: lib/core/progress.hpp).
+// Results a command was asked for (info's description, a JSON file, images) are not messages and
+// are written whatever the verbosity.
 #pragma once
 
 namespace relume {

@@ -1,5 +1,6 @@
 // Progress reporting for long work: a counter that threads advance, and a reporter thread that
-// prints a bar with rate and ETA on a terminal (stderr), or a plain line every few seconds otherwise.
+// prints a bar with rate and ETA on a terminal (stderr), or a plain line every few seconds
+// otherwise.
 #pragma once
 
 #include <atomic>

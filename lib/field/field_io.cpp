@@ -1,15 +1,14 @@
 // Loading reflectance fields from DiLiGenT-style folders and RTI .lp files; writing field folders.
-#include <relume/field.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
-#include "field/light_file.hpp"
 #include "core/parallel.hpp"
+#include "field/light_file.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -84,8 +83,9 @@ FieldSource describe_folder(const fs::path& folder) {
     for (const auto& entry : fs::directory_iterator(folder))
       if (entry.path().extension() == ".lp") lp_files.push_back(entry.path());
     if (lp_files.size() == 1) return describe_lp(lp_files.front());
-    throw Error("folder " + folder.string() +
-                " is not a reflectance field: it has no light_directions.txt and no single .lp file");
+    throw Error(
+        "folder " + folder.string() +
+        " is not a reflectance field: it has no light_directions.txt and no single .lp file");
   }
   FieldSource source;
   source.images = read_filenames(folder);
@@ -117,7 +117,8 @@ int field_channels(int image_channels) { return image_channels >= 3 ? 3 : 1; }
 
 // The intensity a channel of light i was divided by: its own for RGB, the mean for grey fields.
 float channel_intensity(const ReflectanceField& field, int light, int channel) {
-  return field.channels == 1 ? field.intensities.row(light).mean() : field.intensities(light, channel);
+  return field.channels == 1 ? field.intensities.row(light).mean()
+                             : field.intensities(light, channel);
 }
 
 void check_finite(const Image& image, const fs::path& path) {
@@ -140,7 +141,8 @@ std::vector<std::uint8_t> load_mask(const fs::path& path, int width, int height)
   std::vector<std::uint8_t> mask(std::size_t(width) * height);
   for (std::size_t p = 0; p < mask.size(); ++p) {
     float any = 0;
-    for (int c = 0; c < image.channels; ++c) any = std::max(any, image.pixels[p * image.channels + c]);
+    for (int c = 0; c < image.channels; ++c)
+      any = std::max(any, image.pixels[p * image.channels + c]);
     mask[p] = any > 0 ? 1 : 0;
   }
   return mask;
@@ -171,9 +173,9 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
                   "x" + std::to_string(image.height) + " but " + source.images[0].string() +
                   " is " + std::to_string(field.width) + "x" + std::to_string(field.height));
     if (image.channels != first.channels)
-      throw Error("image " + source.images[i].string() + " has " +
-                  std::to_string(image.channels) + " channels but " +
-                  source.images[0].string() + " has " + std::to_string(first.channels));
+      throw Error("image " + source.images[i].string() + " has " + std::to_string(image.channels) +
+                  " channels but " + source.images[0].string() + " has " +
+                  std::to_string(first.channels));
     check_finite(image, source.images[i]);
     float scale[3];
     for (int c = 0; c < field.channels; ++c) scale[c] = 1.0f / channel_intensity(field, i, c);
@@ -182,9 +184,8 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
         field.values(p * field.channels + c, i) = image.pixels[p * image.channels + c] * scale[c];
   });
 
-  field.mask = source.mask.empty()
-                   ? std::vector<std::uint8_t>(field.pixels(), 1)
-                   : load_mask(source.mask, field.width, field.height);
+  field.mask = source.mask.empty() ? std::vector<std::uint8_t>(field.pixels(), 1)
+                                   : load_mask(source.mask, field.width, field.height);
   return field;
 }
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <relume/error.hpp>
 #include <sstream>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -57,8 +57,7 @@ std::ifstream open_text(const fs::path& path) {
 
 Eigen::RowVector3f unit_direction(const std::vector<double>& xyz, const fs::path& path, int line) {
   const double length = std::sqrt(xyz[0] * xyz[0] + xyz[1] * xyz[1] + xyz[2] * xyz[2]);
-  if (!(length > 1e-12))
-    throw Error(where(path, line) + ": light direction has zero length");
+  if (!(length > 1e-12)) throw Error(where(path, line) + ": light direction has zero length");
   return Eigen::RowVector3f(float(xyz[0] / length), float(xyz[1] / length), float(xyz[2] / length));
 }
 

@@ -9,10 +9,9 @@
 #pragma once
 
 #include <filesystem>
+#include <relume/field.hpp>
 #include <string>
 #include <vector>
-
-#include <relume/field.hpp>
 
 namespace relume {
 

@@ -12,10 +12,10 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <relume/error.hpp>
 #include <vector>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -2,7 +2,6 @@
 #include "image/image_difference.hpp"
 
 #include <cmath>
-
 #include <relume/error.hpp>
 
 namespace relume {

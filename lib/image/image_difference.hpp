@@ -4,9 +4,8 @@
 // which an 8-bit output then shows as black).
 #pragma once
 
-#include <string>
-
 #include <relume/image.hpp>
+#include <string>
 
 namespace relume {
 

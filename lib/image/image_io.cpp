@@ -1,15 +1,14 @@
 // OpenImageIO-backed implementation of read_image / write_image.
-#include <relume/image.hpp>
-
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
+#include <relume/error.hpp>
+#include <relume/image.hpp>
+#include <relume/version.hpp>
 #include <string>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
-#include <relume/version.hpp>
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -49,9 +48,9 @@ void write_image(const fs::path& path, const Image& image, const ImageWriteOptio
     if (!std::isfinite(image.pixels[i])) {
       const std::size_t pixel = i / image.channels;
       throw Error("refusing to write " + path.string() + ": pixel (" +
-                  std::to_string(pixel % image.width) + ", " +
-                  std::to_string(pixel / image.width) + ") channel " +
-                  std::to_string(i % image.channels) + " is " + std::to_string(image.pixels[i]));
+                  std::to_string(pixel % image.width) + ", " + std::to_string(pixel / image.width) +
+                  ") channel " + std::to_string(i % image.channels) + " is " +
+                  std::to_string(image.pixels[i]));
     }
   }
   const bool as_float = is_float_image_format(path);

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <random>
-
 #include <relume/error.hpp>
 
 namespace relume {

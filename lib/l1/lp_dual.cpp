@@ -4,9 +4,9 @@
 // for the next right-hand side, so each solve after the first is a warm-started primal simplex.
 // The regression weights x are the dual values of the equality rows; at the optimum d_i is the
 // sign of the residual b_i - A_i x wherever that is non-zero.
+#include <relume/error.hpp>
 #include <vector>
 
-#include <relume/error.hpp>
 #include "l1/glpk.hpp"
 #include "l1/methods.hpp"
 

@@ -3,9 +3,9 @@
 // residual b - A x. With a non-negative residual the l variables are dropped (A x + k = b).
 // Only the row bounds (b) change between right-hand sides: the previous optimal basis stays dual
 // feasible, so each solve after the first is a warm-started dual simplex.
+#include <relume/error.hpp>
 #include <vector>
 
-#include <relume/error.hpp>
 #include "l1/glpk.hpp"
 #include "l1/methods.hpp"
 

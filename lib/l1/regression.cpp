@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <relume/error.hpp>
 #include <sstream>
 #include <vector>
 
-#include <relume/error.hpp>
-#include "l1/methods.hpp"
 #include "core/parallel.hpp"
+#include "l1/methods.hpp"
 
 namespace relume {
 namespace {

@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-
 #include <relume/error.hpp>
 #include <relume/image.hpp>
 

@@ -30,9 +30,8 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <optional>
-#include <string>
-
 #include <relume/lighting.hpp>
+#include <string>
 
 namespace relume {
 

@@ -1,15 +1,14 @@
 // Solid-angle integration of an environment map over the Voronoi cells of a light set, with a
 // coarse cube grid of candidate lights so that each map pixel tests a few lights, not all.
-#include <relume/lighting.hpp>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <relume/error.hpp>
+#include <relume/lighting.hpp>
 #include <vector>
 
-#include <relume/error.hpp>
 #include "core/parallel.hpp"
 #include "lighting/environment_map.hpp"
 

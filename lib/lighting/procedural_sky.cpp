@@ -1,11 +1,10 @@
 // Implementation of the procedural lat-long sky.
-#include <relume/lighting.hpp>
-
 #include <cmath>
 #include <numbers>
+#include <relume/error.hpp>
+#include <relume/lighting.hpp>
 
 #include "lighting/environment_map.hpp"
-#include <relume/error.hpp>
 
 namespace relume {
 

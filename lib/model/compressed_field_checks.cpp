@@ -2,9 +2,8 @@
 #include "model/compressed_field_checks.hpp"
 
 #include <cmath>
-#include <vector>
-
 #include <relume/error.hpp>
+#include <vector>
 
 namespace relume {
 namespace {

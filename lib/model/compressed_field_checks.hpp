@@ -6,9 +6,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
-
 #include <relume/compressed_field.hpp>
+#include <string>
 
 namespace relume {
 

@@ -5,9 +5,8 @@
 #include <cmath>
 #include <numeric>
 #include <random>
-#include <string>
-
 #include <relume/error.hpp>
+#include <string>
 
 namespace relume {
 

@@ -2,13 +2,13 @@
 #include "model/reconstruct_field.hpp"
 
 #include <algorithm>
+#include <relume/error.hpp>
 #include <string>
 #include <vector>
 
-#include "model/compressed_field_checks.hpp"
-#include <relume/error.hpp>
-#include "model/haar_transform.hpp"
 #include "core/parallel.hpp"
+#include "model/compressed_field_checks.hpp"
+#include "model/haar_transform.hpp"
 
 namespace relume {
 namespace {

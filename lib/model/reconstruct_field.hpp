@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-
 #include <relume/compressed_field.hpp>
 
 namespace relume {

@@ -2,7 +2,6 @@
 #include "opencl/bandwidth_ceiling.hpp"
 
 #include <algorithm>
-
 #include <relume/error.hpp>
 
 namespace relume {

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <relume/error.hpp>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
 #include "opencl/kernel_sources.hpp"
 
 namespace relume {

@@ -3,12 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <relume/error.hpp>
 #include <string>
 
-#include "model/compressed_field_checks.hpp"
-#include <relume/error.hpp>
-#include "model/haar_transform.hpp"
 #include "core/parallel.hpp"
+#include "model/compressed_field_checks.hpp"
+#include "model/haar_transform.hpp"
 
 namespace relume {
 

@@ -3,14 +3,14 @@
 // light_in_field_basis) and the per-cluster products v = F^k . I.
 #pragma once
 
-#include <vector>
-
 #include <relume/relight.hpp>
+#include <vector>
 
 namespace relume {
 
 // Throws Error naming the first inconsistency that would make relighting read out of bounds or
-// produce garbage: validate_compressed_field (model/compressed_field_checks.hpp) plus a channel count of 1 or 3.
+// produce garbage: validate_compressed_field (model/compressed_field_checks.hpp) plus a channel
+// count of 1 or 3.
 void check_relightable(const CompressedField& field);
 
 // The light vector as the field's rows see it: lights x channels (a grey field uses the mean of

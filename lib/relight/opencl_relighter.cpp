@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-
 #include <relume/error.hpp>
+
 #include "relight/relight_layout.hpp"
 
 namespace relume {

@@ -7,13 +7,13 @@
 
 #include <cstdint>
 #include <map>
+#include <relume/compressed_field.hpp>
+#include <relume/image.hpp>
 #include <string>
 #include <vector>
 
-#include <relume/compressed_field.hpp>
-#include "relight/compressed_relight_reference.hpp"
-#include <relume/image.hpp>
 #include "opencl/runtime.hpp"
+#include "relight/compressed_relight_reference.hpp"
 #include "relight/relight_layout.hpp"
 
 namespace relume {
@@ -39,8 +39,8 @@ struct RelightTiming {
 };
 
 struct OpenClRelighterOptions {
-  // Rows per slice of the W and residual layout (SLICE_ROWS, lib/relight/relight_layout.hpp); 0: on CPU
-  // devices the tallest of 4096, 2048, ... rows whose padding adds at most 1/8 to the head's
+  // Rows per slice of the W and residual layout (SLICE_ROWS, lib/relight/relight_layout.hpp); 0: on
+  // CPU devices the tallest of 4096, 2048, ... rows whose padding adds at most 1/8 to the head's
   // residual entries (tall_slice_rows), 32 (a warp) on others.
   int slice_rows = 0;
   // CPU devices: residual entries per row in the slices; the rest lie in groups of one row

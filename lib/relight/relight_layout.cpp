@@ -2,7 +2,6 @@
 #include "relight/relight_layout.hpp"
 
 #include <algorithm>
-
 #include <relume/error.hpp>
 
 namespace relume {

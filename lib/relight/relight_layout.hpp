@@ -9,9 +9,8 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
-
 #include <relume/compressed_field.hpp>
+#include <vector>
 
 namespace relume {
 

@@ -34,7 +34,8 @@ Image Relighter::relight(const LightRgb& light, int residual_cap) {
 std::vector<Image> Relighter::relight_batch(const std::vector<LightRgb>& lights, int residual_cap) {
   if (backend_->relighter) return backend_->relighter->relight_batch(lights, residual_cap);
   std::vector<Image> images;
-  for (const auto& light : lights) images.push_back(backend_->reference->relight(light, residual_cap));
+  for (const auto& light : lights)
+    images.push_back(backend_->reference->relight(light, residual_cap));
   return images;
 }
 

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <new>
 #include <optional>
+#include <relume/error.hpp>
 #include <string>
 
-#include <relume/error.hpp>
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "synth/synthetic_scene.hpp"

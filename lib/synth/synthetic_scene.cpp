@@ -6,9 +6,8 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <string>
-
 #include <relume/error.hpp>
+#include <string>
 
 namespace relume {
 namespace {

@@ -12,9 +12,9 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <relume/field.hpp>
 #include <vector>
 
-#include <relume/field.hpp>
 #include "synth/synthetic_materials.hpp"
 
 namespace relume {

@@ -8,15 +8,15 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 #include <set>
 
 #include "compress/checkpoint.hpp"
 #include "compress/clustered_factorization.hpp"
 #include "container/container.hpp"
-#include <relume/error.hpp>
-#include <relume/field.hpp>
-#include "opencl/runtime.hpp"
 #include "model/reconstruct_field.hpp"
+#include "opencl/runtime.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -4,8 +4,8 @@
 
 #include <fstream>
 #include <random>
-
 #include <relume/image.hpp>
+
 #include "support/test_support.hpp"
 
 namespace relume {
@@ -36,9 +36,9 @@ TEST(FieldRelight, DiligentBallMatchesIndependentSum) {
       out << l[0] << " " << l[1] << " " << l[2] << "\n";
     }
   }
-  const auto result = testing::run_relume("relight '" + ball.string() + "' --lights '" +
-                                          (dir / "L.txt").string() + "' -o '" +
-                                          (dir / "x.exr").string() + "'");
+  const auto result =
+      testing::run_relume("relight '" + ball.string() + "' --lights '" + (dir / "L.txt").string() +
+                          "' -o '" + (dir / "x.exr").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
 
   std::vector<std::string> names;
@@ -65,7 +65,8 @@ TEST(FieldRelight, DiligentBallMatchesIndependentSum) {
   ASSERT_EQ(relit.size(), expected.size());
   double worst = 0, peak = 0;
   for (std::size_t k = 0; k < relit.size(); ++k) {
-    worst = std::max(worst, std::abs(relit[k] - expected[k]) / std::max(1e-3, std::abs(expected[k])));
+    worst =
+        std::max(worst, std::abs(relit[k] - expected[k]) / std::max(1e-3, std::abs(expected[k])));
     peak = std::max(peak, expected[k]);
   }
   EXPECT_GT(peak, 1.0) << "the test image is not trivially dark";

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
-
 #include <relume/image.hpp>
+
 #include "support/test_support.hpp"
 
 namespace relume {
@@ -99,10 +99,10 @@ TEST_F(RelightCommands, SequenceFramesEqualSingleRelightsAndReportTheirError) {
               path("sequence.json") + "' -o '" + path("frames/%04d.exr") + "'");
   for (int frame = 0; frame < 3; ++frame) {
     const Image sequence = read_image(path("frames/000" + std::to_string(frame) + ".exr"));
-    const Image single = relight(path("scene.relume"),
-                                 "--env '" + path("sky.exr") + "' --rotate " +
-                                     std::to_string(120 * frame) + " --residual 2",
-                                 "single.exr");
+    const Image single = relight(
+        path("scene.relume"),
+        "--env '" + path("sky.exr") + "' --rotate " + std::to_string(120 * frame) + " --residual 2",
+        "single.exr");
     EXPECT_LT(relative_difference(sequence, single), 1e-10) << "frame " << frame;
   }
   EXPECT_FALSE(fs::exists(path("frames/0003.exr")));
@@ -119,9 +119,9 @@ TEST_F(RelightCommands, SequenceFramesEqualSingleRelightsAndReportTheirError) {
 }
 
 TEST_F(RelightCommands, BadInputIsRefusedWithAMessageAndNoOutput) {
-  auto result = testing::run_relume("relight-sequence '" + path("scene.relume") + "' --env '" +
-                                    path("sky.exr") + "' --frames 2 -o '" + path("bad/frame.exr") +
-                                    "'");
+  auto result =
+      testing::run_relume("relight-sequence '" + path("scene.relume") + "' --env '" +
+                          path("sky.exr") + "' --frames 2 -o '" + path("bad/frame.exr") + "'");
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("frame-number conversion"), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(path("bad")));

@@ -1,17 +1,18 @@
 // Tests of clustered sparse residual factorization: planted clusters are recovered to near
 // exactness, the full residual is lossless, masked and all-zero functions cost nothing, the Haar
 // basis round-trips, and the size rules merge and split clusters.
+#include "compress/clustered_factorization.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
 #include <random>
+#include <relume/error.hpp>
 #include <set>
 
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_size_rules.hpp"
-#include "compress/clustered_factorization.hpp"
 #include "model/compressed_field_checks.hpp"
-#include <relume/error.hpp>
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -24,8 +25,8 @@ struct PlantedField {
 
 // A field of `clusters` clusters: every function is exactly w F^k + a residual with `outliers`
 // non-zeros at random lights.
-PlantedField planted_field(int width, int height, int clusters, int terms, int lights,
-                           int outliers, std::uint64_t seed) {
+PlantedField planted_field(int width, int height, int clusters, int terms, int lights, int outliers,
+                           std::uint64_t seed) {
   std::mt19937_64 random(seed);
   std::normal_distribution<float> normal;
   std::uniform_real_distribution<float> uniform(0.5f, 2.0f);
@@ -87,8 +88,7 @@ double cluster_purity(const CompressedField& compressed, const std::vector<int>&
 TEST(ClusteredFactorization, RecoversPlantedClustersWithTheirSparseResidual) {
   const PlantedField planted = planted_field(40, 20, 8, 4, 96, 3, 7);
   CompressionStats stats;
-  const CompressedField compressed =
-      compress_field(planted.field, options_for(8, 4, 3), stats);
+  const CompressedField compressed = compress_field(planted.field, options_for(8, 4, 3), stats);
   EXPECT_EQ(compressed.clusters, 8);
   EXPECT_EQ(compressed.stored_rows(), std::size_t(planted.field.functions()));
   EXPECT_GT(cluster_purity(compressed, planted.cluster), 0.999);
@@ -103,11 +103,10 @@ TEST(ClusteredFactorization, FullResidualIsLossless) {
   std::normal_distribution<float> normal;
   for (std::int64_t p = 0; p < planted.field.values.size(); ++p)
     planted.field.values.data()[p] += normal(random);  // far from low rank
-  const CompressedField compressed =
-      [&] {
-        CompressionStats stats;
-        return compress_field(planted.field, options_for(4, 2, 40), stats);
-      }();
+  const CompressedField compressed = [&] {
+    CompressionStats stats;
+    return compress_field(planted.field, options_for(4, 2, 40), stats);
+  }();
   EXPECT_EQ(compressed.residual.nonzeros(), compressed.stored_rows() * 40);
   const ReflectanceField back = reconstruct_field(compressed);
   const float scale = planted.field.values.cwiseAbs().maxCoeff();
@@ -118,7 +117,7 @@ TEST(ClusteredFactorization, FullResidualIsLossless) {
 TEST(ClusteredFactorization, MaskedAndAllZeroFunctionsAreNotStored) {
   PlantedField planted = planted_field(12, 10, 2, 2, 24, 0, 5);
   ReflectanceField& field = planted.field;
-  for (int x = 0; x < 12; ++x) field.mask[x] = 0;          // first row outside the mask
+  for (int x = 0; x < 12; ++x) field.mask[x] = 0;             // first row outside the mask
   field.values.row(field.function_index(3, 4, 1)).setZero();  // one zero function inside
   CompressionStats stats;
   const CompressedField compressed = compress_field(field, options_for(2, 2, 4), stats);
@@ -149,7 +148,8 @@ TEST(ClusteredFactorization, MultiresolutionRecoversSpatiallyCoherentClusters) {
   std::mt19937_64 random(5);
   std::normal_distribution<float> normal;
   std::vector<RowMatrixF> bases;
-  for (int k = 0; k < 4; ++k) bases.push_back(RowMatrixF::NullaryExpr(3, 64, [&] { return normal(random); }));
+  for (int k = 0; k < 4; ++k)
+    bases.push_back(RowMatrixF::NullaryExpr(3, 64, [&] { return normal(random); }));
   for (std::int64_t p = 0; p < field.functions(); ++p) {
     const int x = static_cast<int>((p / 3) % field.width);
     const int k = x / 12;
@@ -180,7 +180,6 @@ TEST(ClusteredFactorization, SizeRulesMergeSmallAndSplitLargeClusters) {
   std::vector<int> sizes(split.clusters, 0);
   for (const auto k : split.cluster) ++sizes[k];
   for (const int size : sizes) EXPECT_LE(size, 200);
-
 }
 
 TEST(ClusteredFactorization, SmallClustersMergeIntoTheClusterThatFitsTheirRows) {

@@ -5,8 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "compress/cluster_assignment.hpp"
 #include <relume/error.hpp>
+
+#include "compress/cluster_assignment.hpp"
 #include "compress/random_assignment_problem.hpp"
 
 namespace relume {

@@ -1,9 +1,10 @@
 // Tests of residual selection: budgets parse, rows keep the largest entries above the threshold,
 // sorted by |value| descending with their light index, so every prefix is the best shorter row.
+#include "compress/residual_selection.hpp"
+
 #include <gtest/gtest.h>
 
 #include <relume/error.hpp>
-#include "compress/residual_selection.hpp"
 
 namespace relume {
 namespace {
@@ -11,7 +12,7 @@ namespace {
 TEST(ResidualSelection, ParsesCountsAndPercentages) {
   EXPECT_EQ(parse_residual_budget("10").entries_for(96), 10);
   EXPECT_EQ(parse_residual_budget("500").entries_for(96), 96);
-  EXPECT_EQ(parse_residual_budget("5%").entries_for(96), 5);   // 4.8 rounds to 5
+  EXPECT_EQ(parse_residual_budget("5%").entries_for(96), 5);  // 4.8 rounds to 5
   EXPECT_EQ(parse_residual_budget("100%").entries_for(96), 96);
   EXPECT_EQ(parse_residual_budget("0%").entries_for(96), 0);
   EXPECT_EQ(parse_residual_budget("2.5%").describe(), "2.5%");

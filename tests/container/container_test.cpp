@@ -7,12 +7,12 @@
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
-
-#include "core/atomic_file.hpp"
-#include "container/container_bytes.hpp"
-#include "container/crc32.hpp"
 #include <relume/error.hpp>
 #include <relume/image.hpp>
+
+#include "container/container_bytes.hpp"
+#include "container/crc32.hpp"
+#include "core/atomic_file.hpp"
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"
 

@@ -1,14 +1,13 @@
 // Tests for loading reflectance fields: layouts, intensity division, masks, bit depths, and every
 // kind of bad input (each named in the message, each a non-zero exit from the CLI).
-#include <relume/field.hpp>
-
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
 #include <fstream>
+#include <relume/error.hpp>
+#include <relume/field.hpp>
 
 #include "field/downsample.hpp"
-#include <relume/error.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -2,8 +2,8 @@
 #include "field/light_file.hpp"
 
 #include <fstream>
-
 #include <relume/error.hpp>
+
 #include "support/test_support.hpp"
 
 namespace relume {

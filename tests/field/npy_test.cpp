@@ -7,9 +7,9 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <relume/error.hpp>
 
 #include "core/atomic_file.hpp"
-#include <relume/error.hpp>
 #include "support/test_support.hpp"
 
 namespace relume {

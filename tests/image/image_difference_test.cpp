@@ -7,9 +7,9 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
-
 #include <relume/error.hpp>
 #include <relume/image.hpp>
+
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -2,18 +2,17 @@
 // of a sparse residual (R = W F + E with random W, F and a controlled fraction of non-zeros in E)
 // against an L2 (SVD) factorization, the extremes the header documents, and `relume factor`
 // round trips through .npy files.
-#include "l1/factorization.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-
 #include <relume/error.hpp>
-#include "l1/planted_matrix.hpp"
+
 #include "field/npy.hpp"
+#include "l1/factorization.hpp"
+#include "l1/planted_matrix.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {

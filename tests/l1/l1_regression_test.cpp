@@ -1,16 +1,15 @@
 // Tests of the L1 (least absolute deviations) regression solvers: both exact LP forms against a
 // brute-force vertex search and each other, the Huber QP's approach to the L1 optimum as gamma
 // shrinks, the IRLS gap, the non-negative residual, the batched solve, and degenerate inputs.
-#include "l1/regression.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <cmath>
 #include <random>
-
 #include <relume/error.hpp>
+
+#include "l1/regression.hpp"
 
 namespace relume {
 namespace {

@@ -12,9 +12,9 @@
 #include <limits>
 #include <numbers>
 #include <random>
-
 #include <relume/error.hpp>
 #include <relume/image.hpp>
+
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -1,8 +1,6 @@
 // Tests of the light vector: solid-angle weights over Voronoi cells on the sphere, the up axis
 // and handedness of each layout seen through the lights, rotation, hemisphere coverage, the real
 // maps with real light sets, and `relume lights` on good and bad input.
-#include <relume/lighting.hpp>
-
 #include <OpenImageIO/imageio.h>
 
 #include <Eigen/LU>
@@ -12,11 +10,12 @@
 #include <limits>
 #include <numbers>
 #include <random>
-
-#include "lighting/environment_map.hpp"
 #include <relume/error.hpp>
 #include <relume/image.hpp>
+#include <relume/lighting.hpp>
+
 #include "field/light_file.hpp"
+#include "lighting/environment_map.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -4,10 +4,10 @@
 #include "model/reconstruct_field.hpp"
 
 #include <cmath>
-
-#include "container/container.hpp"
 #include <relume/error.hpp>
 #include <relume/field.hpp>
+
+#include "container/container.hpp"
 #include "model/haar_transform.hpp"
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <relume/error.hpp>
 
 #include "opencl/bandwidth_ceiling.hpp"
-#include <relume/error.hpp>
 
 namespace relume {
 namespace {

@@ -1,17 +1,16 @@
 // Tests of the OpenCL runtime on PoCL: device listing and choice (substring, RELUME_DEVICE,
 // default), the in-memory and on-disk program caches, build failures that name the source and
 // carry the build log, and RELUME_DUMP_KERNELS.
-#include "opencl/runtime.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
-
 #include <relume/error.hpp>
+
 #include "opencl/kernel_sources.hpp"
+#include "opencl/runtime.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {

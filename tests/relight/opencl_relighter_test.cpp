@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "relight/compressed_relight_reference.hpp"
 #include <relume/error.hpp>
+
 #include "model/haar_transform.hpp"
 #include "model/random_compressed_field.hpp"
+#include "relight/compressed_relight_reference.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
-
 #include <relume/error.hpp>
 
 namespace relume::testing {

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
 #include <relume/error.hpp>
 #include <relume/field.hpp>
+
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -59,13 +59,16 @@ int main(int argc, char** argv) {
     const double kernel_vs_reference = relative_difference(relit, expected);
     const double compressed_vs_field = relative_difference(expected, uncompressed);
     const double eq16 = relume::relative_error(field, compressed, true).mean;
-    std::printf("%s on %s: %d stored rows, Eq. 16 error %.4g; OpenCL vs reference %.3g; "
-                "relit vs uncompressed %.3g\n",
-                relume::version_line().c_str(), opencl.device_name().c_str(),
-                int(compressed.stored_rows()), eq16, kernel_vs_reference, compressed_vs_field);
+    std::printf(
+        "%s on %s: %d stored rows, Eq. 16 error %.4g; OpenCL vs reference %.3g; "
+        "relit vs uncompressed %.3g\n",
+        relume::version_line().c_str(), opencl.device_name().c_str(), int(compressed.stored_rows()),
+        eq16, kernel_vs_reference, compressed_vs_field);
     if (compressed.stored_rows() == 0) return fail("stored rows", 0, 1);
-    if (!(kernel_vs_reference < 1e-8)) return fail("OpenCL vs reference", kernel_vs_reference, 1e-8);
-    if (!(compressed_vs_field < 0.05)) return fail("relit vs uncompressed", compressed_vs_field, 0.05);
+    if (!(kernel_vs_reference < 1e-8))
+      return fail("OpenCL vs reference", kernel_vs_reference, 1e-8);
+    if (!(compressed_vs_field < 0.05))
+      return fail("relit vs uncompressed", compressed_vs_field, 0.05);
     if (!(eq16 < 0.05)) return fail("Eq. 16 error", eq16, 0.05);
   } catch (const relume::Error& error) {
     std::fprintf(stderr, "consumer: %s\n", error.what());
