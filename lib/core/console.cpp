@@ -25,28 +25,24 @@ Verbosity verbosity() { return level().load(); }
 
 void set_verbosity(Verbosity value) { level().store(value); }
 
-void say(const char* format, ...) {
-  if (verbosity() == Verbosity::quiet) return;
-  std::va_list arguments;
-  va_start(arguments, format);
-  print_line(stdout, format, arguments);
-  va_end(arguments);
-}
+// The three message kinds differ only in their stream and the least verbosity that shows them.
+#define RELUME_PRINT_LINE(stream, shown)   \
+  do {                                     \
+    if (!(shown)) return;                  \
+    std::va_list arguments;                \
+    va_start(arguments, format);           \
+    print_line(stream, format, arguments); \
+    va_end(arguments);                     \
+  } while (false)
 
-void note(const char* format, ...) {
-  if (verbosity() == Verbosity::quiet) return;
-  std::va_list arguments;
-  va_start(arguments, format);
-  print_line(stderr, format, arguments);
-  va_end(arguments);
-}
+void say(const char* format, ...) { RELUME_PRINT_LINE(stdout, verbosity() != Verbosity::quiet); }
+
+void note(const char* format, ...) { RELUME_PRINT_LINE(stderr, verbosity() != Verbosity::quiet); }
 
 void detail(const char* format, ...) {
-  if (verbosity() != Verbosity::verbose) return;
-  std::va_list arguments;
-  va_start(arguments, format);
-  print_line(stderr, format, arguments);
-  va_end(arguments);
+  RELUME_PRINT_LINE(stderr, verbosity() == Verbosity::verbose);
 }
+
+#undef RELUME_PRINT_LINE
 
 }  // namespace relume
