@@ -48,10 +48,19 @@ nlohmann::ordered_json describe(const std::string& input) {
       {"float32_input_bytes", input_bytes},
       {"ratio_to_float32_input", double(layout.file_bytes) / double(input_bytes)}};
   for (const ContainerSection& section : layout.sections)
-    info["sections"].push_back({{"name", section.name},
-                                {"offset", section.offset},
-                                {"bytes", section.bytes},
-                                {"crc32", section.crc32}});
+    info["sections"].push_back(
+        {{"name", section.name},
+         {"offset", section.offset},
+         {"bytes", section.bytes},
+         {"raw_bytes", section.raw_bytes},
+         {"coding", section.coding},
+         {"bits_per_stored_row",
+          field.stored_rows() ? 8.0 * double(section.bytes) / double(field.stored_rows()) : 0.0},
+         {"crc32", section.crc32}});
+  info["bits_per_stored_row"] =
+      field.stored_rows() ? 8.0 * double(layout.file_bytes) / double(field.stored_rows()) : 0.0;
+  info["bytes_per_pixel"] =
+      double(layout.file_bytes) / double(field.width * std::int64_t(field.height));
   return info;
 }
 
@@ -79,16 +88,23 @@ void print_text(const nlohmann::ordered_json& info) {
   std::printf("parameters: %s\n", info["parameters"].dump().c_str());
   if (!info["written_by"].get<std::string>().empty())
     std::printf("written by: %s\n", info["written_by"].get<std::string>().c_str());
-  std::printf("sections:   %-18s %12s %12s %7s\n", "name", "offset", "bytes", "share");
-  auto row = [&](const std::string& name, std::uint64_t offset, std::uint64_t bytes) {
-    std::printf("            %-18s %12llu %12llu %6.2f%%\n", name.c_str(),
-                static_cast<unsigned long long>(offset), static_cast<unsigned long long>(bytes),
-                100.0 * double(bytes) / double(file_bytes));
+  std::printf("sections:   %-18s %12s %12s %7s %9s  %s\n", "name", "raw bytes", "bytes", "share",
+              "bits/row", "coding");
+  auto row = [&](const std::string& name, std::uint64_t raw, std::uint64_t bytes,
+                 const std::string& coding) {
+    std::printf("            %-18s %12llu %12llu %6.2f%% %9.2f  %s\n", name.c_str(),
+                static_cast<unsigned long long>(raw), static_cast<unsigned long long>(bytes),
+                100.0 * double(bytes) / double(file_bytes),
+                stored_rows ? 8.0 * double(bytes) / double(stored_rows) : 0.0, coding.c_str());
   };
-  row("(preamble+table)", 0, info["preamble_bytes"].get<std::uint64_t>());
+  const auto preamble = info["preamble_bytes"].get<std::uint64_t>();
+  row("(preamble+table)", preamble, preamble, "raw");
   for (const auto& section : info["sections"])
-    row(section["name"].get<std::string>(), section["offset"].get<std::uint64_t>(),
-        section["bytes"].get<std::uint64_t>());
+    row(section["name"].get<std::string>(), section["raw_bytes"].get<std::uint64_t>(),
+        section["bytes"].get<std::uint64_t>(), section["coding"].get<std::string>());
+  std::printf("total:      %llu bytes, %.2f bits per stored row, %.4f bytes per pixel\n",
+              static_cast<unsigned long long>(file_bytes),
+              info["bits_per_stored_row"].get<double>(), info["bytes_per_pixel"].get<double>());
   const double ratio = info["ratio_to_float32_input"].get<double>();
   std::printf("float32 input: %lld functions x %d lights x 4 bytes = %llu bytes\n",
               info["functions"].get<long long>(), info["lights"].get<int>(),

@@ -18,4 +18,6 @@ write_basic_package_version_file("${PROJECT_BINARY_DIR}/relumeConfigVersion.cmak
 install(FILES "${PROJECT_BINARY_DIR}/relumeConfig.cmake"
               "${PROJECT_BINARY_DIR}/relumeConfigVersion.cmake"
               "${PROJECT_SOURCE_DIR}/cmake/FindGLPK.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/FindZstd.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/FindZstd.cmake"
         DESTINATION "${package_dir}")

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
-  libglpk-dev libopenimageio-dev openimageio-tools libeigen3-dev
+  libglpk-dev libzstd-dev libopenimageio-dev openimageio-tools libeigen3-dev
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev python3-numpy python3-openimageio
 )
 

@@ -17,7 +17,8 @@
 
 namespace relume {
 
-inline constexpr std::uint32_t container_format_version = 1;
+// The version write_container writes; read_container also reads version 1 (no entropy coding).
+inline constexpr std::uint32_t container_format_version = 2;
 
 enum class ValuePrecision : std::uint8_t { float32, float16 };
 enum class IndexWidth : std::uint8_t { automatic, bits8, bits16, bits32 };
@@ -26,6 +27,9 @@ struct ContainerOptions {
   ValuePrecision weights = ValuePrecision::float32;
   ValuePrecision residual = ValuePrecision::float32;  // residual values
   IndexWidth light_index = IndexWidth::automatic;     // residual light indices
+  // zstd-compress every section after the filter that suits it (version 2); false stores the
+  // sections' raw bytes (faster to write, larger, and easy to inspect).
+  bool entropy_coding = true;
   // Free-form compression parameters, a JSON object, recorded in the header. On read it comes
   // back re-serialised (same content, keys sorted).
   std::string parameters_json = "{}";
@@ -36,9 +40,11 @@ struct ContainerOptions {
 
 struct ContainerSection {
   std::string name;
-  std::uint64_t offset = 0;  // from the start of the file
-  std::uint64_t bytes = 0;
-  std::uint32_t crc32 = 0;
+  std::uint64_t offset = 0;     // from the start of the file
+  std::uint64_t bytes = 0;      // as stored in the file
+  std::uint64_t raw_bytes = 0;  // after decoding (equal to bytes when stored raw)
+  std::uint32_t crc32 = 0;      // of the stored bytes
+  std::string coding = "raw";   // "raw", "zstd", "zstd+shuffle4", "zstd+delta2", ...
 };
 
 struct ContainerLayout {

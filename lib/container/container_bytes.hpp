@@ -48,6 +48,7 @@ class ByteReader {
   std::uint64_t varint();
   std::string_view bytes(std::size_t count);
 
+  std::string_view rest() const { return data_.substr(position_); }  // the unread bytes
   std::size_t position() const { return position_; }
   std::size_t remaining() const { return data_.size() - position_; }
   const std::string& where() const { return where_; }

@@ -1,6 +1,6 @@
-// Tests of the .relume container: exact round trips, half precision, index widths, and refusal of
-// truncated, altered, foreign and inconsistent files with messages naming the file and section.
-// Also runs `relume info` on a written container.
+// Tests of the .relume container: exact round trips, half precision, index widths, entropy-coded
+// sections (format version 2) and version-1 files, and refusal of truncated, altered, foreign and
+// inconsistent files with messages naming the file and section. Also runs `relume info`.
 #include "container/container.hpp"
 
 #include <cmath>
@@ -12,13 +12,16 @@
 
 #include "container/container_bytes.hpp"
 #include "container/crc32.hpp"
+#include "container/section_coding.hpp"
 #include "core/atomic_file.hpp"
+#include "field/npy.hpp"
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {
 namespace {
 
+using testing::error_message;
 using testing::TempDir;
 
 // 6x5 pixels, 3 channels, 10 lights, 3 clusters, 2 terms; about a third of the functions are not
@@ -88,18 +91,20 @@ std::string read_error(const std::filesystem::path& path) {
   return {};
 }
 
+// Version 2's section table: 48-byte entries from byte 16; an entry's CRC-32 is at byte 40.
+constexpr std::size_t table_start = 16, entry_bytes = 48, entry_crc = 40;
+
 // Rewrites the section checksums and the table checksum after a test changed section contents,
 // so that only the meaning of the contents is wrong.
 void fix_checksums(std::string& bytes, const ContainerLayout& layout) {
-  const std::size_t table = 16;
   for (std::size_t s = 0; s < layout.sections.size(); ++s) {
     const ContainerSection& section = layout.sections[s];
     const std::uint32_t crc = crc32(bytes.data() + section.offset, section.bytes);
     ByteWriter encoded;
     encoded.u32(crc);
-    bytes.replace(table + 40 * s + 32, 4, encoded.data());
+    bytes.replace(table_start + entry_bytes * s + entry_crc, 4, encoded.data());
   }
-  const std::size_t table_end = table + 40 * layout.sections.size();
+  const std::size_t table_end = table_start + entry_bytes * layout.sections.size();
   ByteWriter encoded;
   encoded.u32(crc32(bytes.data(), table_end));
   bytes.replace(table_end, 4, encoded.data());
@@ -173,10 +178,10 @@ TEST(Container, HalfPrecisionRoundTripIsWithinHalfPrecision) {
     changed += x != q;
   }
   EXPECT_GT(changed, 0);  // the values really went through half
-  // Half values take 2 bytes.
+  // Half values take 2 bytes before entropy coding.
   const ContainerLayout layout = describe_container(dir / "h.relume");
-  EXPECT_EQ(layout.section("weights").bytes, field.stored_rows() * field.terms * 2);
-  EXPECT_EQ(layout.section("residual_values").bytes, field.residual.nonzeros() * 2);
+  EXPECT_EQ(layout.section("weights").raw_bytes, field.stored_rows() * field.terms * 2);
+  EXPECT_EQ(layout.section("residual_values").raw_bytes, field.residual.nonzeros() * 2);
 }
 
 TEST(Container, QuantizationErrorIsZeroForFloat32AndSmallForHalf) {
@@ -224,11 +229,11 @@ TEST(Container, LightIndexWidthIsTheSmallestThatFitsOrAsAsked) {
   const CompressedField field = sample_field(3, 300);
   const std::size_t nnz = field.residual.nonzeros();
   ASSERT_GT(nnz, 0u);
-  EXPECT_EQ(plan_container(field).section("residual_indices").bytes, nnz * 2);
+  EXPECT_EQ(plan_container(field).section("residual_indices").raw_bytes, nnz * 2);
   ContainerOptions wide;
   wide.light_index = IndexWidth::bits32;
   write_container(dir / "wide.relume", field, wide);
-  EXPECT_EQ(describe_container(dir / "wide.relume").section("residual_indices").bytes, nnz * 4);
+  EXPECT_EQ(describe_container(dir / "wide.relume").section("residual_indices").raw_bytes, nnz * 4);
   ContainerOptions stored;
   expect_identical(field, read_container(dir / "wide.relume", &stored));
   EXPECT_EQ(stored.light_index, IndexWidth::bits32);
@@ -253,18 +258,21 @@ TEST(Container, PlanMatchesTheWrittenFileAndCountsStoredBytes) {
     EXPECT_EQ(written.sections[s].name, planned.sections[s].name);
     EXPECT_EQ(written.sections[s].offset, planned.sections[s].offset);
     EXPECT_EQ(written.sections[s].bytes, planned.sections[s].bytes);
+    EXPECT_EQ(written.sections[s].raw_bytes, planned.sections[s].raw_bytes);
+    EXPECT_EQ(written.sections[s].coding, planned.sections[s].coding);
     EXPECT_EQ(written.sections[s].crc32, planned.sections[s].crc32);
+    EXPECT_LE(written.sections[s].bytes, written.sections[s].raw_bytes) << "coding never grows";
     total += written.sections[s].bytes;
   }
   EXPECT_EQ(total, written.file_bytes);
   const std::size_t rows = field.stored_rows();
-  EXPECT_EQ(written.section("lights").bytes, std::uint64_t(field.lights) * 6 * 4);
-  EXPECT_EQ(written.section("clusters").bytes, rows);  // 3 clusters: one byte each
-  EXPECT_EQ(written.section("bases").bytes, std::uint64_t(3 * 2 * 10 * 4));
-  EXPECT_EQ(written.section("weights").bytes, rows * 2 * 4);
-  EXPECT_EQ(written.section("residual_offsets").bytes, rows);  // rows of <= 5 entries: u8 lengths
-  EXPECT_EQ(written.section("residual_indices").bytes, field.residual.nonzeros());
-  EXPECT_EQ(written.section("residual_values").bytes, field.residual.nonzeros() * 4);
+  EXPECT_EQ(written.section("lights").raw_bytes, std::uint64_t(field.lights) * 6 * 4);
+  EXPECT_EQ(written.section("clusters").raw_bytes, rows);  // 3 clusters: one byte each
+  EXPECT_EQ(written.section("bases").raw_bytes, std::uint64_t(3 * 2 * 10 * 4));
+  EXPECT_EQ(written.section("weights").raw_bytes, rows * 2 * 4);
+  EXPECT_EQ(written.section("residual_offsets").raw_bytes, rows);  // <= 5 entries: u8 lengths
+  EXPECT_EQ(written.section("residual_indices").raw_bytes, field.residual.nonzeros());
+  EXPECT_EQ(written.section("residual_values").raw_bytes, field.residual.nonzeros() * 4);
 }
 
 TEST(Container, MaskAndFunctionsUseTheSmallerOfBitmapAndRuns) {
@@ -280,7 +288,9 @@ TEST(Container, MaskAndFunctionsUseTheSmallerOfBitmapAndRuns) {
   shape.residual_per_function = 1;
   CompressedField field = random_compressed_field(shape);
   for (std::size_t q = 0; q < field.mask.size(); ++q) field.mask[q] = (q * 7919 % 13) < 6;
-  write_container(dir / "a.relume", field);
+  ContainerOptions raw;  // the sections' own bytes, to look at their first byte
+  raw.entropy_coding = false;
+  write_container(dir / "a.relume", field, raw);
   const std::string bytes = read_file(dir / "a.relume");
   const ContainerLayout layout = describe_container(dir / "a.relume");
   EXPECT_EQ(bytes[layout.section("mask").offset], 0);  // bitmap
@@ -312,7 +322,7 @@ TEST(Container, MaskAndFunctionsUseTheSmallerOfBitmapAndRuns) {
     }
     sparse.residual.row_offsets.push_back(std::uint32_t(sparse.residual.values.size()));
   }
-  write_container(dir / "b.relume", sparse);
+  write_container(dir / "b.relume", sparse, raw);
   const std::string sparse_bytes = read_file(dir / "b.relume");
   const ContainerLayout sparse_layout = describe_container(dir / "b.relume");
   EXPECT_EQ(sparse_bytes[sparse_layout.section("mask").offset], 1);       // runs
@@ -340,7 +350,7 @@ TEST(Container, AnAlteredByteInAnySectionIsRefusedNamingTheSection) {
   }
   // A byte of the section table itself (the 'bases' entry's size).
   std::string altered = original;
-  altered[16 + 40 * 5 + 24] ^= 0x01;
+  altered[table_start + entry_bytes * 5 + 24] ^= 0x01;
   write_bytes(path, altered);
   const std::string message = read_error(path);
   EXPECT_NE(message.find("section table is corrupt"), std::string::npos) << message;
@@ -383,11 +393,13 @@ TEST(Container, ForeignFilesWrongMagicAndVersionsGetClearErrors) {
   EXPECT_NE(message.find("magic"), std::string::npos) << message;
 
   std::string version = original;
-  version[8] = 2;
+  version[8] = 3;
   write_bytes(path, version);
   message = read_error(path);
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("version 2 is not supported"), std::string::npos) << message;
+  EXPECT_NE(message.find("version 3 is not supported (this relume reads versions 1 and 2)"),
+            std::string::npos)
+      << message;
 
   const auto text = dir / "notes.relume";
   write_bytes(text, "width 6 height 5\n");
@@ -418,7 +430,9 @@ TEST(Container, ContentsThatContradictTheHeaderAreRefusedNamingTheSection) {
   TempDir dir;
   const auto path = dir / "a.relume";
   const CompressedField field = sample_field();
-  write_container(path, field);
+  ContainerOptions raw;  // so that the test can edit the sections' contents in place
+  raw.entropy_coding = false;
+  write_container(path, field, raw);
   const std::string original = read_file(path);
   const ContainerLayout layout = describe_container(path);
 
@@ -529,6 +543,131 @@ TEST(Container, AFailedWriteLeavesTheOldFileInPlace) {
     EXPECT_EQ(entry.path().filename(), "a.relume");  // no temporary left behind
 }
 
+TEST(Container, VersionOneFilesStillRead) {
+  for (const std::string name : {"v1_float32", "v1_float16"}) {
+    const auto folder = testing::source_dir() / "tests/container/fixtures";
+    ContainerOptions stored;
+    const CompressedField field = read_container(folder / (name + ".relume"), &stored);
+    EXPECT_EQ(describe_container(folder / (name + ".relume")).version, 1u);
+    EXPECT_FALSE(stored.entropy_coding);
+    EXPECT_EQ(stored.weights,
+              name == "v1_float16" ? ValuePrecision::float16 : ValuePrecision::float32);
+    EXPECT_EQ(nlohmann::json::parse(stored.parameters_json)["fixture"], "version 1");
+    // What the version-1 reader reconstructed from it, bit for bit.
+    const NpyMatrix expected = read_npy_matrix(folder / (name + "_reconstructed.npy"));
+    const ReflectanceField reconstructed = reconstruct_field(field);
+    ASSERT_EQ(expected.values.rows(), reconstructed.values.rows());
+    ASSERT_EQ(expected.values.cols(), reconstructed.values.cols());
+    for (Eigen::Index p = 0; p < expected.values.rows(); ++p)
+      for (Eigen::Index i = 0; i < expected.values.cols(); ++i)
+        ASSERT_EQ(float(expected.values(p, i)), reconstructed.values(p, i)) << name << " " << p;
+    // Its content is sample_field()'s, which a version-2 file stores in fewer bytes.
+    expect_identical(
+        name == "v1_float16" ? quantize_for_container(sample_field(), stored) : sample_field(),
+        field);
+  }
+}
+
+TEST(Container, EntropyCodingIsLosslessAndSmallerOnCompressibleSections) {
+  TempDir dir;
+  RandomFieldShape shape;
+  shape.width = 40;
+  shape.height = 30;
+  shape.lights = 64;
+  shape.clusters = 4;
+  shape.terms = 3;
+  shape.residual_per_function = 6;
+  CompressedField field = random_compressed_field(shape);
+  // Neighbouring functions share clusters in real fields: runs that zstd codes well.
+  for (std::size_t r = 0; r < field.stored_rows(); ++r) field.cluster[r] = std::uint32_t(r / 900);
+  ContainerOptions raw;
+  raw.entropy_coding = false;
+  write_container(dir / "raw.relume", field, raw);
+  write_container(dir / "coded.relume", field);
+  ContainerOptions stored;
+  expect_identical(field, read_container(dir / "coded.relume", &stored));
+  EXPECT_TRUE(stored.entropy_coding);
+  expect_identical(field, read_container(dir / "raw.relume"));
+  const ContainerLayout coded = describe_container(dir / "coded.relume");
+  const ContainerLayout plain = describe_container(dir / "raw.relume");
+  EXPECT_EQ(plain.section("clusters").coding, "raw");
+  EXPECT_EQ(coded.section("header").coding, "raw");  // the header stays readable
+  EXPECT_NE(coded.section("clusters").coding, "raw");
+  EXPECT_LT(coded.section("clusters").bytes, plain.section("clusters").bytes / 20);
+  EXPECT_LT(coded.file_bytes, plain.file_bytes);
+  for (const ContainerSection& section : coded.sections)
+    EXPECT_EQ(section.raw_bytes, plain.section(section.name).raw_bytes) << section.name;
+}
+
+TEST(Container, ADamagedCodedSectionIsRefusedNamingTheSection) {
+  TempDir dir;
+  const auto path = dir / "a.relume";
+  RandomFieldShape shape;
+  shape.width = 20;
+  shape.height = 10;
+  shape.lights = 16;
+  shape.clusters = 2;
+  CompressedField field = random_compressed_field(shape);
+  std::fill(field.cluster.begin(), field.cluster.end(), 1u);  // compressible
+  write_container(path, field);
+  const ContainerLayout layout = describe_container(path);
+  const ContainerSection& clusters = layout.section("clusters");
+  ASSERT_NE(clusters.coding, "raw");
+  const std::string original = read_file(path);
+  // The checksums fixed, so the damage reaches the decoder: zstd or its own checksum refuses it.
+  for (std::size_t at :
+       {clusters.offset + clusters.bytes / 2, clusters.offset + clusters.bytes - 1}) {
+    std::string bytes = original;
+    bytes[at] ^= 0x24;
+    fix_checksums(bytes, layout);
+    write_bytes(path, bytes);
+    const std::string message = read_error(path);
+    EXPECT_NE(message.find(path.string() + ": section 'clusters'"), std::string::npos) << message;
+  }
+  // A table that claims more decoded bytes than the header allows is refused before decoding.
+  std::string bytes = original;
+  ByteWriter huge;
+  huge.u64(std::uint64_t(1) << 40);
+  std::size_t index = 0;
+  while (layout.sections[index].name != "clusters") ++index;
+  bytes.replace(table_start + entry_bytes * index + 32, 8, huge.data());
+  fix_checksums(bytes, layout);
+  write_bytes(path, bytes);
+  const std::string message = read_error(path);
+  EXPECT_NE(message.find("section 'clusters' decodes to 1099511627776 bytes"), std::string::npos)
+      << message;
+}
+
+TEST(SectionCoding, EveryFilterRoundTripsAndUnknownCodingsAreRefused) {
+  std::string raw;
+  for (int i = 0; i < 3000; ++i) raw.push_back(char((i / 7) * 3 % 251));
+  for (int element : {1, 2, 4, 8}) {
+    const std::string sized = raw.substr(0, raw.size() / element * element);
+    const CodedSection coded = code_section(sized, element);
+    EXPECT_LT(coded.bytes.size(), sized.size() / 4) << element;
+    EXPECT_EQ(decode_section(coded.bytes, coded.coding, sized.size(), "s"), sized) << element;
+    for (SectionFilter filter :
+         {SectionFilter::none, SectionFilter::shuffle, SectionFilter::delta_shuffle}) {
+      const SectionCoding coding{true, filter, element};
+      EXPECT_EQ(SectionCoding::from_word(coding.word(), "s").describe(), coding.describe());
+    }
+  }
+  // Random bytes do not compress: they stay raw.
+  std::string noise;
+  std::uint32_t state = 12345;
+  for (int i = 0; i < 4096; ++i)
+    noise.push_back(char((state = state * 1664525u + 1013904223u) >> 24));
+  const CodedSection kept = code_section(noise, 1);
+  EXPECT_FALSE(kept.coding.zstd);
+  EXPECT_EQ(kept.bytes, noise);
+  EXPECT_THAT(error_message([] { SectionCoding::from_word(0x00000307u, "f: section 'x'"); }),
+              ::testing::HasSubstr("f: section 'x': unknown coding word 0x00000307"));
+  const CodedSection coded = code_section(raw, 1);
+  EXPECT_THAT(
+      error_message([&] { decode_section(coded.bytes, coded.coding, raw.size() + 1, "w"); }),
+      ::testing::HasSubstr("decompresses to 3000 bytes, the section table says 3001"));
+}
+
 TEST(InfoCommand, PrintsDimensionsSectionsAndRatio) {
   TempDir dir;
   const auto path = dir / "a.relume";
@@ -569,7 +708,10 @@ TEST(InfoCommand, PrintsDimensionsSectionsAndRatio) {
     section_total += section["bytes"].get<std::uint64_t>();
   EXPECT_EQ(section_total + info["preamble_bytes"].get<std::uint64_t>(), file_bytes);
   EXPECT_EQ(info["sections"][9]["name"], "residual_values");
-  EXPECT_EQ(info["sections"][9]["bytes"], field.residual.nonzeros() * 2);
+  EXPECT_EQ(info["sections"][9]["raw_bytes"], field.residual.nonzeros() * 2);
+  EXPECT_LE(info["sections"][9]["bytes"], field.residual.nonzeros() * 2);
+  EXPECT_DOUBLE_EQ(info["bits_per_stored_row"].get<double>(),
+                   8.0 * double(file_bytes) / double(field.stored_rows()));
 
   write_bytes(dir / "junk.relume", "junk");
   const auto refused = testing::run_relume("info '" + (dir / "junk.relume").string() + "'");

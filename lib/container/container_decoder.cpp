@@ -1,0 +1,298 @@
+// Reading a container: the frame checked (container_format), then each section decoded and
+// validated on its own so that an error names the section (docs/container.md).
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <relume/error.hpp>
+
+#include "container/container.hpp"
+#include "container/container_bit_set.hpp"
+#include "container/container_bytes.hpp"
+#include "container/container_format.hpp"
+#include "container/container_sections.hpp"
+#include "core/atomic_file.hpp"
+#include "model/compressed_field_checks.hpp"
+
+namespace relume {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// A header is a small JSON object; its free-form parameters are the only unbounded part.
+constexpr std::uint64_t max_header_bytes = 16u << 20;
+
+std::string read_container_bytes(const fs::path& path) {
+  if (!fs::exists(path)) throw Error("container not found: " + path.string());
+  if (!fs::is_regular_file(path)) throw Error(path.string() + " is not a relume container file");
+  return read_file(path);
+}
+
+std::int64_t header_integer(const json& header, const char* key, std::int64_t lowest,
+                            std::int64_t highest, const std::string& where) {
+  const auto it = header.find(key);
+  if (it == header.end() || !it->is_number_integer())
+    throw Error(where + ": '" + key + "' is missing or not an integer");
+  const std::int64_t value = it->get<std::int64_t>();
+  if (value < lowest || value > highest)
+    throw Error(where + ": '" + key + "' is " + std::to_string(value) + ", expected " +
+                std::to_string(lowest) + " to " + std::to_string(highest));
+  return value;
+}
+
+std::string header_string(const json& header, const char* key, const std::string& where) {
+  const auto it = header.find(key);
+  if (it == header.end() || !it->is_string())
+    throw Error(where + ": '" + key + "' is missing or not a string");
+  return it->get<std::string>();
+}
+
+int header_width_bytes(const json& header, const char* key, const std::string& where) {
+  const std::int64_t bits = header_integer(header, key, 8, 32, where);
+  if (bits != 8 && bits != 16 && bits != 32)
+    throw Error(where + ": '" + key + "' is " + std::to_string(bits) + ", expected 8, 16 or 32");
+  return static_cast<int>(bits / 8);
+}
+
+ValuePrecision header_precision(const json& header, const char* key, const std::string& where) {
+  const std::string text = header_string(header, key, where);
+  if (text == "float32") return ValuePrecision::float32;
+  if (text == "float16") return ValuePrecision::float16;
+  throw Error(where + ": '" + key + "' is \"" + text + "\", expected \"float32\" or \"float16\"");
+}
+
+float get_value(ByteReader& in, ValuePrecision precision) {
+  return precision == ValuePrecision::float16 ? half_bits_to_float(in.u16()) : in.f32();
+}
+
+struct DecodedHeader {
+  std::uint64_t stored_rows = 0;
+  std::uint64_t nonzeros = 0;
+  StoredWidths widths{};
+  ContainerOptions options;
+};
+
+class ContainerDecoder {
+ public:
+  ContainerDecoder(const std::string& bytes, const ParsedContainer& parsed, const fs::path& path)
+      : bytes_(bytes), parsed_(parsed), file_(path.string()) {}
+
+  CompressedField decode(ContainerOptions* stored_options) {
+    CompressedField field;
+    const DecodedHeader header = decode_header(field);
+    decode_lights(field);
+    check_row_section_sizes(field, header);
+    decode_mask(field);
+    decode_functions(field, header);
+    decode_clusters(field, header);
+    decode_bases(field);
+    decode_weights(field, header);
+    decode_residual(field, header);
+    if (stored_options) {
+      *stored_options = header.options;
+      stored_options->entropy_coding = false;
+      for (const SectionCoding& coding : parsed_.codings)
+        stored_options->entropy_coding = stored_options->entropy_coding || coding.zstd;
+    }
+    return field;
+  }
+
+ private:
+  std::string where(std::string_view section) const {
+    return file_ + ": section '" + std::string(section) + "'";
+  }
+
+  // A reader of a section's decoded bytes, which may not be more than `raw_limit`. The bytes are
+  // decoded once and kept while the decoder lives.
+  ByteReader reader(std::string_view section, std::uint64_t raw_limit) const {
+    auto [it, inserted] = decoded_.try_emplace(std::string(section));
+    if (inserted) it->second = parsed_.contents(bytes_, section, raw_limit, file_);
+    return ByteReader(it->second, where(section));
+  }
+
+  // A reader for a section whose size follows from the header; fails unless it is exactly that.
+  ByteReader sized_reader(std::string_view section,
+                          std::initializer_list<std::uint64_t> factors) const {
+    const std::uint64_t expected = checked_product(factors, where(section));
+    ByteReader in = reader(section, expected);
+    if (in.remaining() != expected)
+      in.fail("has " + std::to_string(in.remaining()) + " bytes, the header implies " +
+              std::to_string(expected));
+    return in;
+  }
+
+  // The most bytes a position set over `universe` positions is stored in: the writer takes the
+  // smaller of a bitmap and runs, so never more than the bitmap with its leading byte.
+  static std::uint64_t bit_set_limit(std::uint64_t universe) { return 1 + (universe + 7) / 8; }
+
+  // The sections whose sizes follow from the header's row and entry counts, checked before anything
+  // is allocated: this bounds the stored rows and residual entries by the file's size.
+  void check_row_section_sizes(const CompressedField& field, const DecodedHeader& header) const {
+    const std::uint64_t rows = header.stored_rows;
+    sized_reader("clusters", {rows, std::uint64_t(header.widths.cluster_id_bytes)});
+    sized_reader("weights", {rows, std::uint64_t(field.terms),
+                             std::uint64_t(value_bytes(header.options.weights))});
+    sized_reader("residual_offsets", {rows, std::uint64_t(header.widths.residual_length_bytes)});
+    sized_reader("residual_indices",
+                 {header.nonzeros, std::uint64_t(header.widths.light_index_bytes)});
+    sized_reader("residual_values",
+                 {header.nonzeros, std::uint64_t(value_bytes(header.options.residual))});
+  }
+
+  DecodedHeader decode_header(CompressedField& field) const {
+    const std::string at = where("header");
+    const ByteReader in = reader("header", max_header_bytes);
+    json header;
+    try {
+      header = json::parse(in.rest());
+    } catch (const json::exception& e) {
+      throw Error(at + ": not valid JSON: " + e.what());
+    }
+    if (!header.is_object()) throw Error(at + ": not a JSON object");
+    constexpr std::int64_t int_max = std::numeric_limits<int>::max();
+    field.width = int(header_integer(header, "width", 1, int_max, at));
+    field.height = int(header_integer(header, "height", 1, int_max, at));
+    field.channels = int(header_integer(header, "channels", 1, int_max, at));
+    field.lights = int(header_integer(header, "lights", 1, int_max, at));
+    field.terms = int(header_integer(header, "terms", 0, int_max, at));
+    field.clusters = int(header_integer(header, "clusters", 0, int_max, at));
+    const std::string transform = header_string(header, "transform", at);
+    if (transform == "identity")
+      field.transform = BasisTransform::identity;
+    else if (transform == "haar")
+      field.transform = BasisTransform::haar;
+    else
+      throw Error(at + ": 'transform' is \"" + transform + "\", expected \"identity\" or \"haar\"");
+    check_dimensions(field, at);
+
+    DecodedHeader decoded;
+    decoded.stored_rows =
+        std::uint64_t(header_integer(header, "stored_rows", 0, field.functions(), at));
+    decoded.nonzeros = std::uint64_t(header_integer(header, "residual_nonzeros", 0,
+                                                    std::numeric_limits<std::uint32_t>::max(), at));
+    decoded.options.weights = header_precision(header, "weights_precision", at);
+    decoded.options.residual = header_precision(header, "residual_precision", at);
+    decoded.widths.cluster_id_bytes = header_width_bytes(header, "cluster_id_bits", at);
+    decoded.widths.residual_length_bytes = header_width_bytes(header, "residual_length_bits", at);
+    decoded.widths.light_index_bytes = header_width_bytes(header, "light_index_bits", at);
+    decoded.options.light_index = decoded.widths.light_index_bytes == 1   ? IndexWidth::bits8
+                                  : decoded.widths.light_index_bytes == 2 ? IndexWidth::bits16
+                                                                          : IndexWidth::bits32;
+    const auto parameters = header.find("parameters");
+    if (parameters == header.end() || !parameters->is_object())
+      throw Error(at + ": 'parameters' is missing or not a JSON object");
+    decoded.options.parameters_json = parameters->dump();
+    const auto software = header.find("software");
+    if (software != header.end()) {
+      if (!software->is_string()) throw Error(at + ": 'software' is not a string");
+      decoded.options.written_by = software->get<std::string>();
+    }
+    return decoded;
+  }
+
+  void decode_lights(CompressedField& field) const {
+    ByteReader in = sized_reader("lights", {2, std::uint64_t(field.lights), 3, 4});
+    field.directions.resize(field.lights, 3);
+    field.intensities.resize(field.lights, 3);
+    for (LightRgb* rows : {&field.directions, &field.intensities})
+      for (int i = 0; i < field.lights; ++i)
+        for (int c = 0; c < 3; ++c) (*rows)(i, c) = in.f32();
+    check_lights(field, where("lights"));
+  }
+
+  void decode_mask(CompressedField& field) const {
+    const std::uint64_t pixels = std::uint64_t(field.width) * field.height;
+    ByteReader in = reader("mask", bit_set_limit(pixels));
+    field.mask = decode_bit_mask(in, pixels);
+  }
+
+  void decode_functions(CompressedField& field, const DecodedHeader& header) const {
+    ByteReader in = reader("functions", bit_set_limit(std::uint64_t(field.functions())));
+    const std::vector<std::uint64_t> functions =
+        decode_bit_set(in, field.functions(), header.stored_rows);
+    if (functions.size() != header.stored_rows)
+      in.fail("holds " + std::to_string(functions.size()) + " functions, the header says " +
+              std::to_string(header.stored_rows) + " stored rows");
+    field.stored_function.assign(functions.begin(), functions.end());
+  }
+
+  void decode_clusters(CompressedField& field, const DecodedHeader& header) const {
+    ByteReader in = sized_reader(
+        "clusters", {header.stored_rows, std::uint64_t(header.widths.cluster_id_bytes)});
+    field.cluster.resize(header.stored_rows);
+    for (std::uint32_t& k : field.cluster)
+      k = static_cast<std::uint32_t>(in.unsigned_of_width(header.widths.cluster_id_bytes));
+    check_clusters(field, where("clusters"));
+  }
+
+  void decode_bases(CompressedField& field) const {
+    ByteReader in =
+        sized_reader("bases", {std::uint64_t(field.clusters), std::uint64_t(field.terms),
+                               std::uint64_t(field.lights), 4});
+    field.bases.resize(in.remaining() / 4);
+    for (float& v : field.bases) v = in.f32();
+    check_bases(field, where("bases"));
+  }
+
+  void decode_weights(CompressedField& field, const DecodedHeader& header) const {
+    ByteReader in = sized_reader("weights", {header.stored_rows, std::uint64_t(field.terms),
+                                             std::uint64_t(value_bytes(header.options.weights))});
+    field.weights.resize(Eigen::Index(header.stored_rows), field.terms);
+    for (std::uint64_t r = 0; r < header.stored_rows; ++r)
+      for (int j = 0; j < field.terms; ++j)
+        field.weights(Eigen::Index(r), j) = get_value(in, header.options.weights);
+    check_weights(field, where("weights"));
+  }
+
+  void decode_residual(CompressedField& field, const DecodedHeader& header) const {
+    ResidualRows& e = field.residual;
+    ByteReader lengths =
+        sized_reader("residual_offsets",
+                     {header.stored_rows, std::uint64_t(header.widths.residual_length_bytes)});
+    e.row_offsets.assign(1, 0);
+    std::uint64_t total = 0;
+    for (std::uint64_t r = 0; r < header.stored_rows; ++r) {
+      total += lengths.unsigned_of_width(header.widths.residual_length_bytes);
+      if (total > header.nonzeros)
+        lengths.fail("the rows up to " + stored_row_name(r) + " hold " + std::to_string(total) +
+                     " residual entries, the header says " + std::to_string(header.nonzeros) +
+                     " in all");
+      e.row_offsets.push_back(static_cast<std::uint32_t>(total));
+    }
+    if (total != header.nonzeros)
+      lengths.fail("the rows hold " + std::to_string(total) +
+                   " residual entries, the header says " + std::to_string(header.nonzeros));
+
+    ByteReader indices = sized_reader(
+        "residual_indices", {header.nonzeros, std::uint64_t(header.widths.light_index_bytes)});
+    e.light_index.resize(header.nonzeros);
+    for (std::uint32_t& i : e.light_index)
+      i = static_cast<std::uint32_t>(indices.unsigned_of_width(header.widths.light_index_bytes));
+    check_residual_indices(field, where("residual_indices"));
+
+    ByteReader values = sized_reader(
+        "residual_values", {header.nonzeros, std::uint64_t(value_bytes(header.options.residual))});
+    e.values.resize(header.nonzeros);
+    for (float& v : e.values) v = get_value(values, header.options.residual);
+    check_residual_values(field, where("residual_values"));
+  }
+
+  const std::string& bytes_;
+  const ParsedContainer& parsed_;
+  std::string file_;
+  mutable std::map<std::string, std::string> decoded_;
+};
+
+}  // namespace
+
+CompressedField read_container(const fs::path& path, ContainerOptions* stored_options) {
+  const std::string bytes = read_container_bytes(path);
+  const ParsedContainer parsed = parse_container(bytes, path);
+  return ContainerDecoder(bytes, parsed, path).decode(stored_options);
+}
+
+ContainerLayout describe_container(const fs::path& path) {
+  return parse_container(read_container_bytes(path), path).layout;
+}
+
+}  // namespace relume

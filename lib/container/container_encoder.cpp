@@ -1,0 +1,184 @@
+// Encoding a CompressedField into the container's sections (docs/container.md) and writing it.
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <relume/error.hpp>
+#include <relume/version.hpp>
+
+#include "container/container.hpp"
+#include "container/container_bit_set.hpp"
+#include "container/container_bytes.hpp"
+#include "container/container_format.hpp"
+#include "container/container_sections.hpp"
+#include "core/atomic_file.hpp"
+#include "model/compressed_field_checks.hpp"
+
+namespace relume {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// `describe()` names the value for the error message; it is only called on failure.
+template <class Describe>
+std::uint16_t checked_half(float value, const Describe& describe, const std::string& where) {
+  const std::uint16_t bits = float_to_half_bits(value);
+  if (!std::isfinite(half_bits_to_float(bits)))
+    throw Error(where + ": " + describe() + " is " + std::to_string(value) +
+                ", beyond the largest half-precision value 65504: store it as float32");
+  return bits;
+}
+
+// Writes values as f32, or as f16 after checking each fits.
+template <class Describe>
+std::string encode_values(const float* values, std::size_t count, ValuePrecision precision,
+                          const Describe& describe, const std::string& where) {
+  ByteWriter out;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (precision == ValuePrecision::float16)
+      out.u16(checked_half(
+          values[i], [&] { return describe(i); }, where));
+    else
+      out.f32(values[i]);
+  }
+  return out.take();
+}
+
+json parse_parameters(const std::string& text, const std::string& where) {
+  if (text.empty()) return json::object();
+  json parameters;
+  try {
+    parameters = json::parse(text);
+  } catch (const json::exception& e) {
+    throw Error(where + ": the compression parameters are not valid JSON: " + e.what());
+  }
+  if (!parameters.is_object())
+    throw Error(where + ": the compression parameters must be a JSON object, got " +
+                parameters.dump());
+  return parameters;
+}
+
+std::string encode_header(const CompressedField& field, const ContainerOptions& options,
+                          const StoredWidths& widths, const std::string& where) {
+  return json{{"width", field.width},
+              {"height", field.height},
+              {"channels", field.channels},
+              {"lights", field.lights},
+              {"terms", field.terms},
+              {"clusters", field.clusters},
+              {"transform", field.transform == BasisTransform::haar ? "haar" : "identity"},
+              {"stored_rows", field.stored_rows()},
+              {"residual_nonzeros", field.residual.nonzeros()},
+              {"weights_precision", to_string(options.weights)},
+              {"residual_precision", to_string(options.residual)},
+              {"cluster_id_bits", 8 * widths.cluster_id_bytes},
+              {"residual_length_bits", 8 * widths.residual_length_bytes},
+              {"light_index_bits", 8 * widths.light_index_bytes},
+              {"parameters", parse_parameters(options.parameters_json, where)},
+              {"software", version_line()}}
+      .dump();
+}
+
+std::vector<StoredSection> encode_sections(const CompressedField& field,
+                                           const ContainerOptions& options,
+                                           const std::string& where) {
+  validate_compressed_field(field, where);
+  IndexWidth light_index;
+  try {
+    light_index = resolve_light_index_width(options.light_index, field.lights);
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
+  const StoredWidths widths = stored_widths(field, light_index);
+
+  ByteWriter lights;
+  for (const LightRgb* rows_of : {&field.directions, &field.intensities})
+    for (Eigen::Index i = 0; i < field.lights; ++i)
+      for (int c = 0; c < 3; ++c) lights.f32((*rows_of)(i, c));
+
+  std::vector<std::uint64_t> inside;
+  for (std::size_t q = 0; q < field.mask.size(); ++q)
+    if (field.mask[q]) inside.push_back(q);
+
+  ByteWriter clusters;
+  for (std::uint32_t k : field.cluster) clusters.unsigned_of_width(k, widths.cluster_id_bytes);
+
+  ByteWriter bases;
+  for (float v : field.bases) bases.f32(v);
+
+  const ResidualRows& e = field.residual;
+  ByteWriter lengths, indices;
+  for (std::size_t r = 0; r < field.stored_rows(); ++r)
+    lengths.unsigned_of_width(e.length(r), widths.residual_length_bytes);
+  for (std::uint32_t light : e.light_index)
+    indices.unsigned_of_width(light, widths.light_index_bytes);
+
+  const int weight_bytes = value_bytes(options.weights);
+  const int residual_bytes = value_bytes(options.residual);
+  return {{"header", encode_header(field, options, widths, where), 1},
+          {"lights", lights.take(), 4},
+          {"mask", encode_bit_set(inside, field.mask.size()), 1},
+          {"functions",
+           encode_bit_set(std::vector<std::uint64_t>(field.stored_function.begin(),
+                                                     field.stored_function.end()),
+                          std::uint64_t(field.functions())),
+           1},
+          {"clusters", clusters.take(), widths.cluster_id_bytes},
+          {"bases", bases.take(), 4},
+          // W is row-major: stored rows x terms.
+          {"weights",
+           encode_values(
+               field.weights.data(), std::size_t(field.weights.size()), options.weights,
+               [&](std::size_t i) { return weight_text(i, field.terms); }, where),
+           weight_bytes},
+          {"residual_offsets", lengths.take(), widths.residual_length_bytes},
+          {"residual_indices", indices.take(), widths.light_index_bytes},
+          {"residual_values",
+           encode_values(
+               e.values.data(), e.values.size(), options.residual,
+               [&](std::size_t k) { return residual_entry_text(e, k); }, where),
+           residual_bytes}};
+}
+
+std::string encode_container(const CompressedField& field, const ContainerOptions& options,
+                             const std::string& where, ContainerLayout* layout) {
+  return assemble_container(encode_sections(field, options, where), options.entropy_coding, layout);
+}
+
+}  // namespace
+
+void write_container(const fs::path& path, const CompressedField& field,
+                     const ContainerOptions& options) {
+  write_file_atomically(path,
+                        encode_container(field, options, "cannot write " + path.string(), nullptr));
+}
+
+ContainerLayout plan_container(const CompressedField& field, const ContainerOptions& options) {
+  ContainerLayout layout;
+  encode_container(field, options, "cannot store the compressed field", &layout);
+  return layout;
+}
+
+CompressedField quantize_for_container(const CompressedField& field,
+                                       const ContainerOptions& options) {
+  const std::string where = "cannot store the compressed field";
+  CompressedField quantized = field;
+  if (options.weights == ValuePrecision::float16)
+    for (Eigen::Index i = 0; i < quantized.weights.size(); ++i) {
+      float& w = quantized.weights.data()[i];
+      w = half_bits_to_float(checked_half(
+          w, [&] { return weight_text(std::size_t(i), field.terms); }, where));
+    }
+  if (options.residual == ValuePrecision::float16)
+    for (std::size_t k = 0; k < quantized.residual.values.size(); ++k) {
+      float& v = quantized.residual.values[k];
+      v = half_bits_to_float(checked_half(
+          v, [&] { return residual_entry_text(field.residual, k); }, where));
+    }
+  return quantized;
+}
+
+RelativeError quantization_error(const CompressedField& field, const ContainerOptions& options) {
+  return relative_error(field, quantize_for_container(field, options));
+}
+
+}  // namespace relume

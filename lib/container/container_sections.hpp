@@ -1,0 +1,35 @@
+// What the container's encoder and decoder agree on about the sections' contents: the byte
+// widths of ids, lengths and light indices, value sizes, and messages naming stored values.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <relume/container.hpp>
+#include <string>
+
+namespace relume {
+
+struct StoredWidths {
+  int cluster_id_bytes = 1;
+  int residual_length_bytes = 1;
+  int light_index_bytes = 1;
+};
+
+// Bytes of the smallest of u8 / u16 / u32 that holds values up to max_value.
+int bytes_for_max_value(std::uint64_t max_value);
+
+// The widths a field is stored with, the light index width resolved.
+StoredWidths stored_widths(const CompressedField& field, IndexWidth light_index);
+
+// 2 for float16, 4 for float32.
+int value_bytes(ValuePrecision precision);
+
+// The product of sizes; throws Error("<where>: sizes overflow 64 bits").
+std::uint64_t checked_product(std::initializer_list<std::uint64_t> factors,
+                              const std::string& where);
+
+// "the weight of stored row 3 term 1", "residual entry 2 of stored row 5": for messages.
+std::string weight_text(std::size_t flat_index, int terms);
+std::string residual_entry_text(const ResidualRows& residual, std::size_t k);
+
+}  // namespace relume

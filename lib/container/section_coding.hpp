@@ -1,0 +1,44 @@
+// How a section of a version-2 container is stored: its raw bytes, or zstd-compressed after a
+// reversible filter that helps numbers compress: a byte shuffle (all first bytes of the
+// elements, then all second bytes, ...) or a delta of consecutive elements before the shuffle
+// (for ids and counts that change little from one stored row to the next). The writer tries
+// each and keeps the smallest; the section table records the choice.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace relume {
+
+enum class SectionFilter : std::uint8_t { none = 0, shuffle = 1, delta_shuffle = 2 };
+
+struct SectionCoding {
+  bool zstd = false;
+  SectionFilter filter = SectionFilter::none;
+  int element_bytes = 1;  // 1, 2, 4 or 8: the size of the numbers the filter works on
+
+  // The section table's 32-bit coding word: bits 0-7 codec (0 raw, 1 zstd), 8-15 filter,
+  // 16-23 element bytes.
+  std::uint32_t word() const;
+  // Throws Error("<where>: ...") for an unknown codec, filter or element size.
+  static SectionCoding from_word(std::uint32_t word, const std::string& where);
+  std::string describe() const;  // "raw", "zstd", "zstd+shuffle4", "zstd+delta2"
+};
+
+struct CodedSection {
+  std::string bytes;
+  SectionCoding coding;
+};
+
+// The smallest of: raw, and zstd after each filter, for numbers of `element_bytes` bytes
+// (raw.size() must be a multiple of it).
+CodedSection code_section(const std::string& raw, int element_bytes);
+
+// The raw bytes of a coded section, which must be exactly `raw_bytes` long (the caller bounds
+// raw_bytes before this allocates it). Throws Error("<where>: ...") for a damaged zstd frame or
+// a size other than raw_bytes.
+std::string decode_section(std::string_view coded, const SectionCoding& coding,
+                           std::uint64_t raw_bytes, const std::string& where);
+
+}  // namespace relume
