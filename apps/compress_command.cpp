@@ -19,11 +19,13 @@
 #include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
 #include "container/container.hpp"
+#include "container/container_sections.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "json_report.hpp"
+#include "model/quantization.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -40,9 +42,12 @@ struct CompressArguments {
   std::string transform = "identity";
   std::string assign = "opencl";
   std::string device;
-  std::string weights_precision = "float32";
-  std::string residual_precision = "float32";
+  std::string weights_precision = "quantized";
+  std::string residual_precision = "quantized";
+  std::string bases_precision = "quantized";
+  double quantization_budget = QuantizationBudget{}.relative_increase;
   double target_error = 0;
+  double psnr_white = 1.0;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
   CompressionOptions options;
@@ -96,55 +101,89 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   ContainerOptions container;
   container.weights = parse_value_precision(arguments.weights_precision);
   container.residual = parse_value_precision(arguments.residual_precision);
+  if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
+    throw Error("--bases-precision must be 'quantized' or 'float32', got '" +
+                arguments.bases_precision + "'");
+  if (!(arguments.quantization_budget > 0) || !std::isfinite(arguments.quantization_budget))
+    throw Error("--quantization-budget must be a relative error increase > 0, got " +
+                std::to_string(arguments.quantization_budget));
 
-  CompressedField compressed;
+  // What the file stores: W, F and E quantized within the error budget (quantize_with_budget),
+  // and half precision where asked for float parts; `compressed` stays for the report.
+  QuantizationBudget budget;
+  budget.relative_increase = arguments.quantization_budget;
+  budget.weights = container.weights == ValuePrecision::quantized;
+  budget.residual = container.residual == ValuePrecision::quantized;
+  budget.bases = arguments.bases_precision == "quantized";
+  budget.threads = options.clustering.threads;
+  const bool quantize = budget.weights || budget.residual || budget.bases;
+
+  CompressedField compressed, stored;
+  std::optional<QuantizationChoice> quantization;
   nlohmann::ordered_json target_choice;
+  auto quantize_start = Clock::now();
   if (arguments.target_error > 0) {
-    TargetSearch search =
-        compress_to_target_error(field, options, arguments.target_error, container, stats);
-    compressed = std::move(search.field);
+    TargetSearch search = compress_to_target_error(field, options, arguments.target_error,
+                                                   container, quantize ? &budget : nullptr, stats);
+    quantize_start = Clock::now();
+    stored = std::move(search.field);  // already quantized
+    compressed = stored;
+    quantization = search.quantization;
     options = search.options;
     target_choice = search.explanation;
   } else {
     compressed = compress_field(field, options, stats, hook, resume ? &*resume : nullptr);
+    quantize_start = Clock::now();
+    stored = compressed;
+    if (quantize) quantization = quantize_with_budget(field, stored, budget);
   }
+  stored = quantize_for_container(stored, container);
+  const double quantize_seconds = seconds_since(quantize_start);
 
   const auto write_start = Clock::now();
   container.parameters_json = compression_parameters(options, stats, arguments.solver).dump();
-  write_container(output, compressed, container);
+  write_container(output, stored, container);
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
-  // The report measures what the file holds: half precision rounds W and the residual values
-  // (quantize_for_container is what read_container would return); float32 stores them exactly.
-  const bool rounded =
-      container.weights != ValuePrecision::float32 || container.residual != ValuePrecision::float32;
-  const CompressedField stored =
-      rounded ? quantize_for_container(compressed, container) : CompressedField{};
 
   CompressionRun run;
   run.input = input;
   run.output = output.string();
   run.field = &field;
-  run.compressed = rounded ? &stored : &compressed;
+  run.compressed = &stored;
   run.options = &options;
   run.stats = &stats;
   run.layout = describe_container(output);
-  run.extra_seconds = {{"load", load_seconds}, {"write", write_seconds}};
+  run.extra_seconds = {
+      {"load", load_seconds}, {"quantize", quantize_seconds}, {"write", write_seconds}};
   run.threads = resolve_thread_count(options.clustering.threads);
   run.solver = arguments.solver;
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
+  run.psnr_white = arguments.psnr_white;
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
   if (!target_choice.is_null()) report["target_error"] = target_choice;
-  if (rounded)
+  const bool rounded = quantization || container.weights == ValuePrecision::float16 ||
+                       container.residual == ValuePrecision::float16;
+  if (rounded) {
     report["precision_cost"] = {
-        {"weights", to_string(container.weights)},
-        {"residual_values", to_string(container.residual)},
+        {"weights", to_string(stored_weight_precision(stored, container))},
+        {"residual_values", to_string(stored_residual_precision(stored, container))},
+        {"basis_bits", stored.quantization.basis_bits},
         {"error_masked_stored", report["error_masked"]},
         {"error_masked_float32",
          relative_error(field, compressed, true, all_residual_entries, run.threads).mean},
         {"quantization_error",
          relative_error(compressed, stored, all_residual_entries, run.threads).mean}};
+    if (quantization)
+      report["precision_cost"]["quantization"] = {
+          {"budget", budget.relative_increase},
+          {"weight_step", quantization->steps.weight_step},
+          {"residual_step", quantization->steps.residual_step},
+          {"basis_bits", quantization->steps.basis_bits},
+          {"sample_error_unquantized", quantization->error_unquantized},
+          {"sample_error_quantized", quantization->error_quantized}};
+  }
   say("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
       "%d clusters, %.1f s",
       input.c_str(), output.c_str(),
@@ -291,9 +330,18 @@ const CommandRegistration registration{
                           "OpenCL device for --assign opencl: a substring of 'platform / device' "
                           "(default RELUME_DEVICE, else the first GPU, else PoCL)");
       command->add_option("--weights-precision", arguments->weights_precision,
-                          "Stored W: float32 (default) or float16");
+                          "Stored W: quantized (default: integers times one step, the coarsest "
+                          "within --quantization-budget), float32 or float16");
       command->add_option("--residual-precision", arguments->residual_precision,
-                          "Stored residual values: float32 (default) or float16");
+                          "Stored residual values: quantized (default), float32 or float16");
+      command->add_option("--bases-precision", arguments->bases_precision,
+                          "Stored bases: quantized (default: 8 to 16 bits per value with a "
+                          "scale per basis function) or float32");
+      command
+          ->add_option("--quantization-budget", arguments->quantization_budget,
+                       "How much quantization may add to the error (paper Eq. 16) over the "
+                       "stored functions, relative (0.01: 1%)")
+          ->capture_default_str();
       command->add_option(
           "--report", arguments->report,
           "Write a JSON report (times, iterations, bytes, errors, sparseness, memory)");
@@ -301,6 +349,11 @@ const CommandRegistration registration{
           "--target-error", arguments->target_error,
           "Choose terms, clusters and per-function residual lengths that reach this "
           "relative error (paper Eq. 16, masked functions) with the fewest bytes");
+      command
+          ->add_option("--psnr-white", arguments->psnr_white,
+                       "The field value that is 255 in the report's 8-bit PSNR (1 for fields of "
+                       "8-bit or normalised images)")
+          ->capture_default_str();
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");
       command->callback([arguments] { run_compress(*arguments); });

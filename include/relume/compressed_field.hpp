@@ -37,6 +37,18 @@ struct ResidualRows {
   }
 };
 
+// How a compressed field's values are stored (in the container and in the relighting kernels'
+// memory). The floats of W, F and E are always exactly the values they stand for; these say that
+// they are integers times a step, which is how they are stored. All zero / empty: float values.
+struct ValueQuantization {
+  float weight_step = 0;    // every weight is an integer in [-32767, 32767] times this
+  float residual_step = 0;  // every residual value is an integer in [-32767, 32767] times this
+  int basis_bits = 0;       // 8..16: basis row (k, j) is integers of this many bits times
+  std::vector<float> basis_scales;  // basis_scales[k * terms + j]
+
+  bool any() const { return weight_step > 0 || residual_step > 0 || basis_bits > 0; }
+};
+
 struct CompressedField {
   int width = 0;
   int height = 0;
@@ -54,6 +66,7 @@ struct CompressedField {
   RowMatrixF weights;                          // stored rows x terms (W)
   std::vector<float> bases;  // clusters * terms * lights: F^k[j][i] at (k * terms + j) * lights + i
   ResidualRows residual;     // stored rows, in the transformed basis
+  ValueQuantization quantization;
 
   std::size_t stored_rows() const { return stored_function.size(); }
   std::int64_t functions() const { return std::int64_t(width) * height * channels; }

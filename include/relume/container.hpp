@@ -20,10 +20,15 @@ namespace relume {
 // The version write_container writes; read_container also reads version 1 (no entropy coding).
 inline constexpr std::uint32_t container_format_version = 2;
 
-enum class ValuePrecision : std::uint8_t { float32, float16 };
+// How W or the residual values are stored: float32, IEEE half, or integers times the field's
+// quantization step (ValuePrecision::quantized: always so for a quantized field, see
+// ValueQuantization in relume/compressed_field.hpp).
+enum class ValuePrecision : std::uint8_t { float32, float16, quantized };
 enum class IndexWidth : std::uint8_t { automatic, bits8, bits16, bits32 };
 
 struct ContainerOptions {
+  // For fields whose values are not quantized: float32 or float16 (a quantized part is always
+  // stored as its integers; `quantized` here means float32 for a part that is not).
   ValuePrecision weights = ValuePrecision::float32;
   ValuePrecision residual = ValuePrecision::float32;  // residual values
   IndexWidth light_index = IndexWidth::automatic;     // residual light indices

@@ -4,11 +4,18 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 
+#include "model/field_psnr.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
 namespace {
+
+// JSON has no infinity or NaN: identical images (infinite PSNR) and empty masks are null.
+nlohmann::ordered_json finite_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
+}
 
 nlohmann::ordered_json error_json(const RelativeError& error) {
   return {{"mean", error.mean},
@@ -84,6 +91,7 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
         relative_error(field, compressed, true, cap, run.threads).mean;
   }
   by_prefix[std::to_string(stats.residual_entries)] = masked.mean;
+  const Psnr8 psnr = psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads);
   const double error_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -110,6 +118,11 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
       {"ratio", double(run.layout.file_bytes) / double(input_bytes)},
       {"error_all", all.mean},
       {"error_masked", masked.mean},
+      {"psnr_8bit",
+       {{"whole_frame", finite_or_null(psnr.whole_frame)},
+        {"mask", finite_or_null(psnr.masked)},
+        {"white", run.psnr_white}}},
+      {"bytes_per_pixel", double(run.layout.file_bytes) / double(field.pixels())},
       {"float32_input_bytes", input_bytes},
       {"sections", sections},
       {"error_masked_by_residual_entries", by_prefix},

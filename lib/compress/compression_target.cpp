@@ -55,9 +55,39 @@ double cut_residual_to_error(CompressedField& field, const std::vector<double>& 
   return std::max(0.0, (total - kept) / double(rows));
 }
 
+namespace {
+
+// `full` cut to the target and, with a budget, quantized; the error reached over its stored rows.
+struct Candidate {
+  CompressedField field;
+  double reached = 0;
+  std::optional<QuantizationChoice> quantization;
+};
+
+Candidate cut_and_store(const ReflectanceField& original, const CompressedField& full,
+                        const std::vector<double>& energy, double target_error,
+                        const QuantizationBudget* quantization) {
+  Candidate candidate;
+  double aim = quantization ? target_error / (1 + quantization->relative_increase) : target_error;
+  for (int round = 0; round < 4; ++round) {
+    candidate.field = full;
+    candidate.reached = cut_residual_to_error(candidate.field, energy, aim);
+    if (!quantization) return candidate;
+    candidate.quantization = quantize_with_budget(original, candidate.field, *quantization);
+    candidate.reached = relative_error(original, candidate.field, true).mean;
+    if (candidate.reached <= target_error) break;
+    aim *= target_error / candidate.reached;  // quantization added more than its share: aim lower
+  }
+  return candidate;
+}
+
+}  // namespace
+
 TargetSearch compress_to_target_error(const ReflectanceField& field,
                                       const CompressionOptions& options, double target_error,
-                                      const ContainerOptions& container, CompressionStats& stats) {
+                                      const ContainerOptions& container,
+                                      const QuantizationBudget* quantization,
+                                      CompressionStats& stats) {
   if (!(target_error > 0))
     throw Error("target error must be > 0, got " + std::to_string(target_error));
   const int terms_grid[] = {2, 4, 8};
@@ -73,11 +103,13 @@ TargetSearch compress_to_target_error(const ReflectanceField& field,
       candidate.clustering.clusters = clusters;
       candidate.residual = ResidualBudget{0, 100.0};
       CompressionStats candidate_stats;
-      CompressedField compressed = compress_field(field, candidate, candidate_stats);
-      std::vector<double> energy(compressed.stored_rows());
+      const CompressedField full = compress_field(field, candidate, candidate_stats);
+      std::vector<double> energy(full.stored_rows());
       for (std::size_t r = 0; r < energy.size(); ++r)
-        energy[r] = field.values.row(compressed.stored_function[r]).cast<double>().squaredNorm();
-      const double reached = cut_residual_to_error(compressed, energy, target_error);
+        energy[r] = field.values.row(full.stored_function[r]).cast<double>().squaredNorm();
+      Candidate stored = cut_and_store(field, full, energy, target_error, quantization);
+      CompressedField& compressed = stored.field;
+      const double reached = stored.reached;
       candidate_stats.residual_nonzeros = compressed.residual.nonzeros();
       const std::uint64_t bytes = plan_container(compressed, container).file_bytes;
       const double mean_entries =
@@ -98,6 +130,7 @@ TargetSearch compress_to_target_error(const ReflectanceField& field,
       if (best_bytes == 0 || bytes < best_bytes) {
         best_bytes = bytes;
         best.field = std::move(compressed);
+        best.quantization = stored.quantization;
         best.options = candidate;
         stats = candidate_stats;
       }

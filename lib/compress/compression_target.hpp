@@ -8,23 +8,30 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "compress/clustered_factorization.hpp"
 #include "container/container.hpp"
+#include "model/quantization.hpp"
 
 namespace relume {
 
 struct TargetSearch {
-  CompressedField field;
-  CompressionOptions options;         // the chosen terms and clusters
+  CompressedField field;       // quantized when a budget was given
+  CompressionOptions options;  // the chosen terms and clusters
+  std::optional<QuantizationChoice> quantization;
   nlohmann::ordered_json explanation;  // every candidate tried, its bytes and the choice
 };
 
-// `options` gives everything but terms, clusters and the residual budget. `stats` receives the
-// statistics of the chosen run.
+// `options` gives everything but terms, clusters and the residual budget. With `quantization`,
+// every candidate is stored quantized within that budget (quantize_with_budget) and measured so:
+// its residual is cut to a lower target first, and again lower while the quantized field's error
+// is above the target. `stats` receives the statistics of the chosen run.
 TargetSearch compress_to_target_error(const ReflectanceField& field,
                                       const CompressionOptions& options, double target_error,
-                                      const ContainerOptions& container, CompressionStats& stats);
+                                      const ContainerOptions& container,
+                                      const QuantizationBudget* quantization,
+                                      CompressionStats& stats);
 
 // Cuts every row of `field`'s residual to the shortest prefix such that the mean per-function
 // relative error over its stored rows reaches `target_error` (rows sorted by |value|, as stored).

@@ -19,7 +19,28 @@ StoredWidths stored_widths(const CompressedField& field, IndexWidth light_index)
           bytes_for_max_value(field.residual.longest_row()), index_width_bits(light_index) / 8};
 }
 
-int value_bytes(ValuePrecision precision) { return precision == ValuePrecision::float16 ? 2 : 4; }
+int value_bytes(ValuePrecision precision) { return precision == ValuePrecision::float32 ? 4 : 2; }
+
+namespace {
+
+ValuePrecision stored_precision(float step, ValuePrecision asked) {
+  if (step > 0) return ValuePrecision::quantized;
+  return asked == ValuePrecision::float16 ? ValuePrecision::float16 : ValuePrecision::float32;
+}
+
+}  // namespace
+
+ValuePrecision stored_weight_precision(const CompressedField& field,
+                                       const ContainerOptions& options) {
+  return stored_precision(field.quantization.weight_step, options.weights);
+}
+
+ValuePrecision stored_residual_precision(const CompressedField& field,
+                                         const ContainerOptions& options) {
+  return stored_precision(field.quantization.residual_step, options.residual);
+}
+
+int basis_value_bytes(int basis_bits) { return basis_bits == 0 ? 4 : basis_bits <= 8 ? 1 : 2; }
 
 std::uint64_t checked_product(std::initializer_list<std::uint64_t> factors,
                               const std::string& where) {
@@ -45,11 +66,20 @@ std::string residual_entry_text(const ResidualRows& residual, std::size_t k) {
 ValuePrecision parse_value_precision(const std::string& name) {
   if (name == "float32") return ValuePrecision::float32;
   if (name == "float16" || name == "half") return ValuePrecision::float16;
-  throw Error("unknown precision \"" + name + "\": expected float32 or float16 (half)");
+  if (name == "quantized") return ValuePrecision::quantized;
+  throw Error("unknown precision \"" + name + "\": expected quantized, float32 or float16 (half)");
 }
 
 std::string to_string(ValuePrecision precision) {
-  return precision == ValuePrecision::float16 ? "float16" : "float32";
+  switch (precision) {
+    case ValuePrecision::float16:
+      return "float16";
+    case ValuePrecision::quantized:
+      return "quantized";
+    case ValuePrecision::float32:
+      break;
+  }
+  return "float32";
 }
 
 IndexWidth parse_index_width(const std::string& name) {

@@ -1,5 +1,6 @@
 // Reading a container: the frame checked (container_format), then each section decoded and
 // validated on its own so that an error names the section (docs/container.md).
+#include <cmath>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -10,8 +11,10 @@
 #include "container/container_bytes.hpp"
 #include "container/container_format.hpp"
 #include "container/container_sections.hpp"
+#include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
 #include "model/compressed_field_checks.hpp"
+#include "model/quantization.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -54,11 +57,27 @@ int header_width_bytes(const json& header, const char* key, const std::string& w
   return static_cast<int>(bits / 8);
 }
 
-ValuePrecision header_precision(const json& header, const char* key, const std::string& where) {
+ValuePrecision header_precision(const json& header, const char* key, std::uint32_t version,
+                                const std::string& where) {
   const std::string text = header_string(header, key, where);
   if (text == "float32") return ValuePrecision::float32;
   if (text == "float16") return ValuePrecision::float16;
-  throw Error(where + ": '" + key + "' is \"" + text + "\", expected \"float32\" or \"float16\"");
+  if (text == "quantized" && version >= 2) return ValuePrecision::quantized;
+  throw Error(where + ": '" + key + "' is \"" + text + "\", expected \"float32\", \"float16\"" +
+              (version >= 2 ? " or \"quantized\"" : ""));
+}
+
+// A quantization step: a positive finite number when the values are quantized, else 0 (or
+// absent, as in version 1).
+float header_step(const json& header, const char* key, bool quantized, const std::string& where) {
+  const auto it = header.find(key);
+  const double step = it == header.end() ? 0.0 : it->is_number() ? it->get<double>() : -1.0;
+  const bool valid = quantized ? std::isfinite(step) && step > 0 && step < 3.4e38 : step == 0;
+  if (!valid)
+    throw Error(where + ": '" + key + "' is " + (it == header.end() ? "missing" : it->dump()) +
+                (quantized ? ", expected a positive step for quantized values"
+                           : ", expected 0 for values that are not quantized"));
+  return float(step);
 }
 
 float get_value(ByteReader& in, ValuePrecision precision) {
@@ -170,8 +189,20 @@ class ContainerDecoder {
         std::uint64_t(header_integer(header, "stored_rows", 0, field.functions(), at));
     decoded.nonzeros = std::uint64_t(header_integer(header, "residual_nonzeros", 0,
                                                     std::numeric_limits<std::uint32_t>::max(), at));
-    decoded.options.weights = header_precision(header, "weights_precision", at);
-    decoded.options.residual = header_precision(header, "residual_precision", at);
+    const std::uint32_t version = parsed_.layout.version;
+    decoded.options.weights = header_precision(header, "weights_precision", version, at);
+    decoded.options.residual = header_precision(header, "residual_precision", version, at);
+    ValueQuantization& quantization = field.quantization;
+    quantization.weight_step = header_step(
+        header, "weight_step", decoded.options.weights == ValuePrecision::quantized, at);
+    quantization.residual_step = header_step(
+        header, "residual_step", decoded.options.residual == ValuePrecision::quantized, at);
+    if (version >= 2) {
+      quantization.basis_bits = int(header_integer(header, "basis_bits", 0, 16, at));
+      if (quantization.basis_bits > 0 && quantization.basis_bits < 8)
+        throw Error(at + ": 'basis_bits' is " + std::to_string(quantization.basis_bits) +
+                    ", expected 0 (float32 bases) or 8 to 16");
+    }
     decoded.widths.cluster_id_bytes = header_width_bytes(header, "cluster_id_bits", at);
     decoded.widths.residual_length_bytes = header_width_bytes(header, "residual_length_bits", at);
     decoded.widths.light_index_bytes = header_width_bytes(header, "light_index_bits", at);
@@ -226,21 +257,61 @@ class ContainerDecoder {
   }
 
   void decode_bases(CompressedField& field) const {
+    ValueQuantization& quantization = field.quantization;
+    const int bytes = basis_value_bytes(quantization.basis_bits);
+    const std::uint64_t rows = std::uint64_t(field.clusters) * std::uint64_t(field.terms);
+    if (parsed_.layout.version >= 2) {
+      ByteReader scales = sized_reader("basis_scales", {quantization.basis_bits ? rows : 0, 4});
+      quantization.basis_scales.resize(scales.remaining() / 4);
+      for (float& scale : quantization.basis_scales) {
+        scale = scales.f32();
+        if (!(std::isfinite(scale) && scale > 0))
+          scales.fail("holds the scale " + std::to_string(scale) + ", expected a positive number");
+      }
+    }
     ByteReader in =
-        sized_reader("bases", {std::uint64_t(field.clusters), std::uint64_t(field.terms),
-                               std::uint64_t(field.lights), 4});
-    field.bases.resize(in.remaining() / 4);
-    for (float& v : field.bases) v = in.f32();
+        sized_reader("bases", {rows, std::uint64_t(field.lights), std::uint64_t(bytes)});
+    field.bases.resize(in.remaining() / std::size_t(bytes));
+    for (std::size_t v = 0; v < field.bases.size(); ++v) {
+      if (bytes == 4) {
+        field.bases[v] = in.f32();
+        continue;
+      }
+      const double q = bytes == 1 ? double(std::int8_t(in.u8())) : double(std::int16_t(in.u16()));
+      if (std::abs(q) >= std::ldexp(1.0, quantization.basis_bits - 1))
+        in.fail("holds the integer " + std::to_string(q) + ", beyond " +
+                std::to_string(quantization.basis_bits) + " bits");
+      field.bases[v] = float(q * quantization.basis_scales[v / std::size_t(field.lights)]);
+    }
     check_bases(field, where("bases"));
+  }
+
+  // A quantized value: a 16-bit integer in [-32767, 32767] times the step.
+  static float quantized_value(ByteReader& in, float step) {
+    const std::int16_t q = std::int16_t(in.u16());
+    if (q < -max_quantized_value) in.fail("holds the integer -32768, beyond the quantized range");
+    return float(double(q) * step);
   }
 
   void decode_weights(CompressedField& field, const DecodedHeader& header) const {
     ByteReader in = sized_reader("weights", {header.stored_rows, std::uint64_t(field.terms),
                                              std::uint64_t(value_bytes(header.options.weights))});
     field.weights.resize(Eigen::Index(header.stored_rows), field.terms);
-    for (std::uint64_t r = 0; r < header.stored_rows; ++r)
-      for (int j = 0; j < field.terms; ++j)
-        field.weights(Eigen::Index(r), j) = get_value(in, header.options.weights);
+    if (header.options.weights == ValuePrecision::quantized) {
+      std::vector<std::uint16_t> errors(std::size_t(field.weights.size()));
+      for (std::uint16_t& error : errors) error = in.u16();
+      const std::vector<std::int32_t> integers = unpredict_weights(field, errors);
+      for (std::size_t i = 0; i < integers.size(); ++i) {
+        if (integers[i] < -max_quantized_value)
+          in.fail("predicts the integer -32768 for " + weight_text(i, field.terms) +
+                  ", beyond the quantized range");
+        field.weights.data()[i] = float(double(integers[i]) * field.quantization.weight_step);
+      }
+    } else {
+      for (std::uint64_t r = 0; r < header.stored_rows; ++r)
+        for (int j = 0; j < field.terms; ++j)
+          field.weights(Eigen::Index(r), j) = get_value(in, header.options.weights);
+    }
     check_weights(field, where("weights"));
   }
 
@@ -273,7 +344,10 @@ class ContainerDecoder {
     ByteReader values = sized_reader(
         "residual_values", {header.nonzeros, std::uint64_t(value_bytes(header.options.residual))});
     e.values.resize(header.nonzeros);
-    for (float& v : e.values) v = get_value(values, header.options.residual);
+    for (float& v : e.values)
+      v = header.options.residual == ValuePrecision::quantized
+              ? quantized_value(values, field.quantization.residual_step)
+              : get_value(values, header.options.residual);
     check_residual_values(field, where("residual_values"));
   }
 

@@ -9,6 +9,7 @@
 #include "container/container_bytes.hpp"
 #include "container/container_format.hpp"
 #include "container/container_sections.hpp"
+#include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
 #include "model/compressed_field_checks.hpp"
 
@@ -68,8 +69,11 @@ std::string encode_header(const CompressedField& field, const ContainerOptions& 
               {"transform", field.transform == BasisTransform::haar ? "haar" : "identity"},
               {"stored_rows", field.stored_rows()},
               {"residual_nonzeros", field.residual.nonzeros()},
-              {"weights_precision", to_string(options.weights)},
-              {"residual_precision", to_string(options.residual)},
+              {"weights_precision", to_string(stored_weight_precision(field, options))},
+              {"residual_precision", to_string(stored_residual_precision(field, options))},
+              {"weight_step", field.quantization.weight_step},
+              {"residual_step", field.quantization.residual_step},
+              {"basis_bits", field.quantization.basis_bits},
               {"cluster_id_bits", 8 * widths.cluster_id_bytes},
               {"residual_length_bits", 8 * widths.residual_length_bytes},
               {"light_index_bits", 8 * widths.light_index_bytes},
@@ -102,8 +106,19 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
   ByteWriter clusters;
   for (std::uint32_t k : field.cluster) clusters.unsigned_of_width(k, widths.cluster_id_bytes);
 
-  ByteWriter bases;
-  for (float v : field.bases) bases.f32(v);
+  const ValueQuantization& quantization = field.quantization;
+  const int basis_bytes = basis_value_bytes(quantization.basis_bits);
+  ByteWriter bases, basis_scales;
+  for (float scale : quantization.basis_scales) basis_scales.f32(scale);
+  for (std::size_t v = 0; v < field.bases.size(); ++v) {
+    if (basis_bytes == 4) {
+      bases.f32(field.bases[v]);
+      continue;
+    }
+    const auto q =
+        std::int32_t(std::lround(field.bases[v] / quantization.basis_scales[v / field.lights]));
+    bases.unsigned_of_width(std::uint16_t(std::int16_t(q)), basis_bytes);
+  }
 
   const ResidualRows& e = field.residual;
   ByteWriter lengths, indices;
@@ -112,8 +127,33 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
   for (std::uint32_t light : e.light_index)
     indices.unsigned_of_width(light, widths.light_index_bytes);
 
-  const int weight_bytes = value_bytes(options.weights);
-  const int residual_bytes = value_bytes(options.residual);
+  const ValuePrecision weight_precision = stored_weight_precision(field, options);
+  const ValuePrecision residual_precision = stored_residual_precision(field, options);
+  std::string weights, residual_values;
+  if (weight_precision == ValuePrecision::quantized) {
+    // Integers, stored as their camera-space prediction errors.
+    std::vector<std::int32_t> integers(std::size_t(field.weights.size()));
+    for (std::size_t i = 0; i < integers.size(); ++i)
+      integers[i] = std::int32_t(std::lround(field.weights.data()[i] / quantization.weight_step));
+    ByteWriter out;
+    for (std::uint16_t error : predict_weights(field, integers)) out.u16(error);
+    weights = out.take();
+  } else {
+    // W is row-major: stored rows x terms.
+    weights = encode_values(
+        field.weights.data(), std::size_t(field.weights.size()), weight_precision,
+        [&](std::size_t i) { return weight_text(i, field.terms); }, where);
+  }
+  if (residual_precision == ValuePrecision::quantized) {
+    ByteWriter out;
+    for (float v : e.values)
+      out.u16(std::uint16_t(std::int16_t(std::lround(v / quantization.residual_step))));
+    residual_values = out.take();
+  } else {
+    residual_values = encode_values(
+        e.values.data(), e.values.size(), residual_precision,
+        [&](std::size_t k) { return residual_entry_text(e, k); }, where);
+  }
   return {{"header", encode_header(field, options, widths, where), 1},
           {"lights", lights.take(), 4},
           {"mask", encode_bit_set(inside, field.mask.size()), 1},
@@ -123,20 +163,12 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
                           std::uint64_t(field.functions())),
            1},
           {"clusters", clusters.take(), widths.cluster_id_bytes},
-          {"bases", bases.take(), 4},
-          // W is row-major: stored rows x terms.
-          {"weights",
-           encode_values(
-               field.weights.data(), std::size_t(field.weights.size()), options.weights,
-               [&](std::size_t i) { return weight_text(i, field.terms); }, where),
-           weight_bytes},
+          {"basis_scales", basis_scales.take(), 4},
+          {"bases", bases.take(), basis_bytes},
+          {"weights", std::move(weights), value_bytes(weight_precision)},
           {"residual_offsets", lengths.take(), widths.residual_length_bytes},
           {"residual_indices", indices.take(), widths.light_index_bytes},
-          {"residual_values",
-           encode_values(
-               e.values.data(), e.values.size(), options.residual,
-               [&](std::size_t k) { return residual_entry_text(e, k); }, where),
-           residual_bytes}};
+          {"residual_values", std::move(residual_values), value_bytes(residual_precision)}};
 }
 
 std::string encode_container(const CompressedField& field, const ContainerOptions& options,
@@ -162,13 +194,13 @@ CompressedField quantize_for_container(const CompressedField& field,
                                        const ContainerOptions& options) {
   const std::string where = "cannot store the compressed field";
   CompressedField quantized = field;
-  if (options.weights == ValuePrecision::float16)
+  if (stored_weight_precision(field, options) == ValuePrecision::float16)
     for (Eigen::Index i = 0; i < quantized.weights.size(); ++i) {
       float& w = quantized.weights.data()[i];
       w = half_bits_to_float(checked_half(
           w, [&] { return weight_text(std::size_t(i), field.terms); }, where));
     }
-  if (options.residual == ValuePrecision::float16)
+  if (stored_residual_precision(field, options) == ValuePrecision::float16)
     for (std::size_t k = 0; k < quantized.residual.values.size(); ++k) {
       float& v = quantized.residual.values[k];
       v = half_bits_to_float(checked_half(

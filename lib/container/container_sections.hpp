@@ -21,8 +21,19 @@ int bytes_for_max_value(std::uint64_t max_value);
 // The widths a field is stored with, the light index width resolved.
 StoredWidths stored_widths(const CompressedField& field, IndexWidth light_index);
 
-// 2 for float16, 4 for float32.
+// 2 for float16 and quantized values (16-bit integers), 4 for float32.
 int value_bytes(ValuePrecision precision);
+
+// How the field's W and residual values are stored with `options`: quantized when the field's
+// values are (ValueQuantization), else float16 when the options say so, else float32 (also when
+// the options ask for quantized values the field does not have).
+ValuePrecision stored_weight_precision(const CompressedField& field,
+                                       const ContainerOptions& options);
+ValuePrecision stored_residual_precision(const CompressedField& field,
+                                         const ContainerOptions& options);
+
+// Bytes per stored basis value: 4 (float32), 1 (up to 8-bit integers) or 2 (up to 16).
+int basis_value_bytes(int basis_bits);
 
 // The product of sizes; throws Error("<where>: sizes overflow 64 bits").
 std::uint64_t checked_product(std::initializer_list<std::uint64_t> factors,

@@ -38,27 +38,6 @@ void accumulate_stored_row(const CompressedField& field, std::size_t row, int re
     sum[field.residual.light_index[k]] += field.residual.values[k];
 }
 
-// Function p's reconstruction in the light basis into `out` (zero when not stored); `sum` is
-// scratch of field.lights doubles.
-void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
-                          double* sum, float* out) {
-  if (stored_row < 0) {
-    std::fill(out, out + field.lights, 0.0f);
-    return;
-  }
-  accumulate_stored_row(field, std::size_t(stored_row), residual_cap, sum);
-  std::copy(sum, sum + field.lights, out);
-  if (field.transform == BasisTransform::haar) haar_inverse(out, field.lights, 1);
-}
-
-// Stored row of every function, -1 where the function is not stored.
-std::vector<std::int64_t> stored_row_of_function(const CompressedField& field) {
-  std::vector<std::int64_t> row_of(static_cast<std::size_t>(field.functions()), -1);
-  for (std::size_t r = 0; r < field.stored_rows(); ++r)
-    row_of[field.stored_function[r]] = std::int64_t(r);
-  return row_of;
-}
-
 // Per-worker buffers for comparing one function at a time.
 struct FunctionScratch {
   explicit FunctionScratch(int lights) : sum(lights), exact(lights), approx(lights) {}
@@ -110,6 +89,24 @@ std::string shape_text(int width, int height, int channels, int lights) {
 }
 
 }  // namespace
+
+void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
+                          double* sum, float* out) {
+  if (stored_row < 0) {
+    std::fill(out, out + field.lights, 0.0f);
+    return;
+  }
+  accumulate_stored_row(field, std::size_t(stored_row), residual_cap, sum);
+  std::copy(sum, sum + field.lights, out);
+  if (field.transform == BasisTransform::haar) haar_inverse(out, field.lights, 1);
+}
+
+std::vector<std::int64_t> stored_row_of_function(const CompressedField& field) {
+  std::vector<std::int64_t> row_of(static_cast<std::size_t>(field.functions()), -1);
+  for (std::size_t r = 0; r < field.stored_rows(); ++r)
+    row_of[field.stored_function[r]] = std::int64_t(r);
+  return row_of;
+}
 
 void reconstruct_stored_row(const CompressedField& field, std::size_t row, int residual_cap,
                             float* out) {

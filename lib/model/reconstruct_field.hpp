@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <relume/compressed_field.hpp>
+#include <vector>
 
 namespace relume {
 
@@ -14,5 +15,14 @@ namespace relume {
 // is trusted (validated fields only).
 void reconstruct_stored_row(const CompressedField& field, std::size_t row, int residual_cap,
                             float* out);
+
+// Function p's reconstruction in the light basis into `out` (field.lights floats), given its
+// stored row (-1: not stored, so zero); `sum` is scratch of field.lights doubles. The field is
+// trusted (validated fields only).
+void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
+                          double* sum, float* out);
+
+// Stored row of every function, -1 where the function is not stored.
+std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
 
 }  // namespace relume

@@ -81,7 +81,24 @@ TEST(CompressCommand, WritesAContainerAndAReport) {
   EXPECT_GT(report["error_all"].get<double>(), 0.4);
   EXPECT_FALSE(report["clustering"]["iterations"].empty());
   EXPECT_FALSE(std::filesystem::exists(dir / "out.relume.checkpoint"));
-  EXPECT_FALSE(report.contains("precision_cost")) << "float32 costs nothing";
+  // Stored quantized by default, within the 1% budget of Eq. 16 error (here every stored row is
+  // in the budget's sample, so the bound holds for the whole field).
+  const nlohmann::json& cost = report["precision_cost"];
+  EXPECT_EQ(cost["weights"], "quantized");
+  EXPECT_EQ(cost["residual_values"], "quantized");
+  EXPECT_GE(cost["basis_bits"].get<int>(), 8);
+  EXPECT_EQ(compressed.quantization.weight_step, cost["quantization"]["weight_step"].get<float>());
+  EXPECT_LE(report["error_masked"].get<double>(),
+            cost["error_masked_float32"].get<double>() * (1 + 0.01) + 1e-12);
+
+  const auto exact = testing::run_relume(
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "float.relume").string() +
+      "' --clusters 2 --terms 2 --residual 1 --threads 2 --weights-precision float32 "
+      "--residual-precision float32 --bases-precision float32 --report '" +
+      (dir / "float.json").string() + "'");
+  ASSERT_EQ(exact.exit_code, 0) << exact.output;
+  EXPECT_FALSE(read_json(dir / "float.json").contains("precision_cost")) << "float32 costs nothing";
+  EXPECT_FALSE(read_container(dir / "float.relume").quantization.any());
 }
 
 TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostReported) {

@@ -1,0 +1,20 @@
+// Re-expresses a compressed field's clusters in orthonormal, mutually aligned bases without
+// changing what it reconstructs: per cluster, F^k = U S V^T (thin SVD), so W F^k = (W U S) V^T;
+// then V^T is turned by the orthogonal matrix O_k (orthogonal Procrustes) that brings it closest
+// to one shared reference basis G, the dominant subspace of all clusters' bases weighted by their
+// sizes. Afterwards
+//   - the error a weight change makes is that change in L2 (orthonormal rows), so one
+//     quantization step means the same absolute error in every cluster, and
+//   - weights mean nearly the same in neighbouring clusters (aligned bases), so the weights of
+//     neighbouring pixels stay similar across cluster borders and predict each other.
+#pragma once
+
+#include <relume/compressed_field.hpp>
+
+namespace relume {
+
+// In place; the product W F^k of every row changes only by float rounding. Clusters whose basis
+// has fewer independent rows than terms keep zero weights for the missing directions.
+void align_cluster_bases(CompressedField& field);
+
+}  // namespace relume

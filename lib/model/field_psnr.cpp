@@ -1,0 +1,83 @@
+// Implementation of the 8-bit PSNR of a compressed field against its original.
+#include "model/field_psnr.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <relume/error.hpp>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "model/compressed_field_checks.hpp"
+#include "model/reconstruct_field.hpp"
+
+namespace relume {
+namespace {
+
+double to_8bit(double value, double scale) {
+  return std::round(std::clamp(value * scale, 0.0, 255.0));
+}
+
+double psnr_of(const std::vector<double>& squared_error_per_light, double samples) {
+  if (samples == 0) return std::numeric_limits<double>::quiet_NaN();
+  double mse = 0;
+  for (double e : squared_error_per_light) mse += e / samples;
+  mse /= double(squared_error_per_light.size());
+  if (mse == 0) return std::numeric_limits<double>::infinity();
+  return 20 * std::log10(255.0) - 10 * std::log10(mse);
+}
+
+}  // namespace
+
+Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compressed, double white,
+                int residual_cap, unsigned threads) {
+  if (!(white > 0) || !std::isfinite(white))
+    throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
+  if (residual_cap < all_residual_entries)
+    throw Error("residual cap " + std::to_string(residual_cap) + " is invalid");
+  validate_compressed_field(compressed, "cannot measure the PSNR of the compressed field");
+  if (original.width != compressed.width || original.height != compressed.height ||
+      original.channels != compressed.channels || original.lights() != compressed.lights)
+    throw Error("cannot measure the PSNR: the original and the compressed field differ in shape");
+  const int lights = compressed.lights;
+  const double scale = 255.0 / white;
+  const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
+
+  // Per block of functions, per light: squared 8-bit errors over all and over masked functions;
+  // summed in block order, so the result does not depend on the thread count.
+  constexpr std::size_t block = 4096;
+  const std::size_t functions = std::size_t(original.functions());
+  const std::size_t blocks = (functions + block - 1) / block;
+  std::vector<std::vector<double>> all(blocks), inside(blocks);
+  std::vector<std::size_t> inside_count(blocks, 0);
+  const unsigned workers = resolve_thread_count(threads);
+  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
+  std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
+    all[b].assign(lights, 0.0);
+    inside[b].assign(lights, 0.0);
+    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
+      reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
+                           approx[worker].data());
+      const float* exact = original.values.row(Eigen::Index(p)).data();
+      const bool masked = compressed.mask[p / std::size_t(compressed.channels)] != 0;
+      inside_count[b] += masked;
+      for (int i = 0; i < lights; ++i) {
+        const double d = to_8bit(exact[i], scale) - to_8bit(approx[worker][i], scale);
+        all[b][i] += d * d;
+        if (masked) inside[b][i] += d * d;
+      }
+    }
+  });
+  std::vector<double> all_total(lights, 0.0), inside_total(lights, 0.0);
+  double inside_samples = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    for (int i = 0; i < lights; ++i) {
+      all_total[i] += all[b][i];
+      inside_total[i] += inside[b][i];
+    }
+    inside_samples += double(inside_count[b]);
+  }
+  return {psnr_of(all_total, double(functions)), psnr_of(inside_total, inside_samples)};
+}
+
+}  // namespace relume

@@ -1,0 +1,54 @@
+// Quantized storage of a compressed field (relume/compressed_field.hpp ValueQuantization): W and
+// the residual values as integers times one step each, every basis row as integers of a few bits
+// times its own scale. Best after align_cluster_bases (model/basis_alignment.hpp), where one
+// weight step means the same absolute error everywhere. The steps come from an error budget: the
+// largest that keep the paper's Eq. 16 error within (1 + budget) of the unquantized field's,
+// measured on a sample of the stored rows against the original field.
+#pragma once
+
+#include <cstddef>
+#include <relume/compressed_field.hpp>
+#include <relume/field.hpp>
+
+namespace relume {
+
+// The integer range of quantized weights and residual values.
+inline constexpr int max_quantized_value = 32767;
+
+struct QuantizationSteps {
+  float weight_step = 0;    // 0: weights stay float
+  float residual_step = 0;  // 0: residual values stay float
+  int basis_bits = 0;       // 0: bases stay float; else 8..16
+};
+
+// The field with its values rounded to `steps` and field.quantization set to say so. Residual
+// entries that round to zero are dropped (rows stay sorted by |value|). Throws Error when a step
+// would make an integer beyond max_quantized_value or basis_bits is outside 8..16.
+CompressedField quantize_values(const CompressedField& field, const QuantizationSteps& steps);
+
+struct QuantizationBudget {
+  double relative_increase = 0.01;  // of the Eq. 16 error over the stored rows
+  // The parts to quantize; the others keep float values.
+  bool weights = true, residual = true, bases = true;
+  std::size_t sample_rows = 20000;  // stored rows the error is measured on (evenly spaced)
+  unsigned threads = 0;
+};
+
+struct QuantizationChoice {
+  QuantizationSteps steps;
+  double error_unquantized = 0;  // Eq. 16 over the sample
+  double error_quantized = 0;
+};
+
+// The coarsest steps within the budget: each part (bases, weights, residual) gets its share of
+// the budget, then all together are checked and refined until they fit. `original` is the field
+// `field` was compressed from.
+QuantizationChoice choose_quantization(const ReflectanceField& original,
+                                       const CompressedField& field,
+                                       const QuantizationBudget& budget);
+
+// The whole step: align_cluster_bases, choose_quantization, quantize_values, in place.
+QuantizationChoice quantize_with_budget(const ReflectanceField& original, CompressedField& field,
+                                        const QuantizationBudget& budget);
+
+}  // namespace relume

@@ -1,0 +1,210 @@
+// Tests of quantized storage: aligned orthonormal bases reconstruct the same field, quantized
+// values are exact multiples of their steps (entries that round to zero dropped, rows still
+// sorted), the error-budget choice keeps its budget, quantized fields round-trip through the
+// container bit for bit (weights through their camera-space prediction), and the 8-bit PSNR
+// measures what it says. (Damaged quantized sections: tests/container/container_test.cpp.)
+#include "model/quantization.hpp"
+
+#include <cmath>
+#include <relume/container.hpp>
+#include <relume/error.hpp>
+
+#include "container/weight_prediction.hpp"
+#include "model/basis_alignment.hpp"
+#include "model/compressed_field_checks.hpp"
+#include "model/field_psnr.hpp"
+#include "model/random_compressed_field.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+using testing::error_message;
+using ::testing::HasSubstr;
+using testing::TempDir;
+
+CompressedField sample_field(std::uint64_t seed = 5) {
+  RandomFieldShape shape;
+  shape.width = 12;
+  shape.height = 9;
+  shape.channels = 3;
+  shape.lights = 24;
+  shape.clusters = 4;
+  shape.terms = 3;
+  shape.residual_per_function = 6;
+  shape.vary_residual = true;
+  shape.stored_fraction = 0.8;
+  shape.seed = seed;
+  return random_compressed_field(shape);
+}
+
+// A field that `compressed` approximates: its reconstruction plus noise on the stored functions
+// (the others stay zero and have no Eq. 16 error), so the compressed field has a known, non-zero
+// error over exactly its stored rows.
+ReflectanceField original_of(const CompressedField& compressed, double noise) {
+  ReflectanceField field = reconstruct_field(compressed);
+  std::uint32_t state = 99;
+  for (std::uint32_t p : compressed.stored_function)
+    for (int i = 0; i < field.lights(); ++i) {
+      state = state * 1664525u + 1013904223u;
+      field.values(p, i) += float(noise * (double(state >> 8) / double(1 << 24) - 0.5));
+    }
+  return field;
+}
+
+double largest_difference(const ReflectanceField& a, const ReflectanceField& b) {
+  return (a.values - b.values).cwiseAbs().maxCoeff();
+}
+
+TEST(BasisAlignment, KeepsEveryReconstructionAndMakesBasesOrthonormal) {
+  CompressedField field = sample_field();
+  const ReflectanceField before = reconstruct_field(field);
+  align_cluster_bases(field);
+  EXPECT_LT(largest_difference(reconstruct_field(field), before), 1e-5);
+  for (int k = 0; k < field.clusters; ++k) {
+    const Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+        basis(field.basis(k), field.terms, field.lights);
+    const Eigen::MatrixXf gram = basis * basis.transpose();
+    EXPECT_LT((gram - Eigen::MatrixXf::Identity(field.terms, field.terms)).cwiseAbs().maxCoeff(),
+              1e-5)
+        << "cluster " << k;
+  }
+}
+
+TEST(BasisAlignment, BringsClustersOfOneSubspaceToTheSameBasis) {
+  // Two clusters whose bases span the same subspace in different coordinates: after alignment
+  // their bases agree, so equal functions get equal weights in either cluster.
+  CompressedField field = sample_field();
+  const int t = field.terms, m = field.lights;
+  std::vector<float> mixed(field.bases.begin(), field.bases.begin() + t * m);
+  for (int j = 0; j < t; ++j)  // cluster 1 = an invertible mix of cluster 0's rows
+    for (int i = 0; i < m; ++i)
+      field.bases[std::size_t(t + j) * m + i] =
+          mixed[std::size_t(j) * m + i] + 0.5f * mixed[std::size_t((j + 1) % t) * m + i];
+  align_cluster_bases(field);
+  for (int v = 0; v < t * m; ++v)
+    EXPECT_NEAR(std::abs(field.bases[v]), std::abs(field.bases[t * m + v]), 1e-4) << v;
+}
+
+TEST(Quantization, ValuesBecomeMultiplesOfTheirStepsAndZerosLeaveTheResidual) {
+  CompressedField field = sample_field();
+  align_cluster_bases(field);
+  const QuantizationSteps steps{0.01f, 0.05f, 9};
+  const CompressedField q = quantize_values(field, steps);
+  validate_compressed_field(q, "quantized");
+  EXPECT_EQ(q.quantization.weight_step, 0.01f);
+  EXPECT_EQ(q.quantization.residual_step, 0.05f);
+  EXPECT_EQ(q.quantization.basis_bits, 9);
+  ASSERT_EQ(q.quantization.basis_scales.size(), std::size_t(field.clusters * field.terms));
+  for (Eigen::Index i = 0; i < q.weights.size(); ++i) {
+    const double units = q.weights.data()[i] / 0.01;
+    EXPECT_NEAR(units, std::round(units), 1e-3);
+    EXPECT_LE(std::abs(q.weights.data()[i] - field.weights.data()[i]), 0.005f + 1e-6f);
+  }
+  EXPECT_LT(q.residual.nonzeros(), field.residual.nonzeros())
+      << "sigma 0.1 values: some round to 0";
+  for (float v : q.residual.values) {
+    EXPECT_NE(v, 0.0f);
+    EXPECT_NEAR(v / 0.05, std::round(v / 0.05), 1e-3);
+  }
+  for (std::size_t row = 0; row < q.quantization.basis_scales.size(); ++row)
+    for (int i = 0; i < q.lights; ++i) {
+      const double units = q.bases[row * q.lights + i] / q.quantization.basis_scales[row];
+      EXPECT_NEAR(units, std::round(units), 1e-3);
+      EXPECT_LE(std::abs(units), 255.0);
+    }
+  EXPECT_THAT(error_message([&] {
+                quantize_values(field, {1e-9f, 0, 0});
+              }),
+              HasSubstr("needs more than 16 bits"));
+  EXPECT_THAT(error_message([&] {
+                quantize_values(field, {0, 0, 5});
+              }),
+              HasSubstr("basis bits must be 8 to 16"));
+}
+
+TEST(Quantization, TheChosenStepsKeepTheBudgetAndCoarserOnesWouldNot) {
+  CompressedField field = sample_field();
+  const ReflectanceField original = original_of(field, 0.05);
+  for (double budget : {0.01, 0.1}) {
+    CompressedField stored = field;
+    QuantizationBudget asked;
+    asked.relative_increase = budget;
+    const QuantizationChoice choice = quantize_with_budget(original, stored, asked);
+    const double before = relative_error(original, field, false).mean;
+    const double after = relative_error(original, stored, false).mean;
+    EXPECT_GT(after, before);
+    EXPECT_LE(after, before * (1 + budget)) << budget;  // all rows are the sample here
+    EXPECT_NEAR(choice.error_quantized, after, 1e-6 * after);
+    // Four times coarser weights would break it.
+    CompressedField aligned = field;
+    align_cluster_bases(aligned);
+    QuantizationSteps coarser = choice.steps;
+    coarser.weight_step *= 4;
+    EXPECT_GT(relative_error(original, quantize_values(aligned, coarser), false).mean,
+              before * (1 + budget));
+  }
+}
+
+TEST(WeightPrediction, RoundTripsAnyIntegersWithMissingNeighbours) {
+  CompressedField field = sample_field(8);
+  std::vector<std::int32_t> integers(std::size_t(field.weights.size()));
+  std::uint32_t state = 3;
+  for (auto& q : integers) {
+    state = state * 1664525u + 1013904223u;
+    q = std::int32_t(state >> 16) % 65535 - 32767;  // the whole range, wrap-around included
+  }
+  EXPECT_EQ(unpredict_weights(field, predict_weights(field, integers)), integers);
+  // Smooth planes predict well: constant weights leave errors of 0 past the first row.
+  std::fill(integers.begin(), integers.end(), 1234);
+  const std::vector<std::uint16_t> errors = predict_weights(field, integers);
+  std::size_t zero = 0;
+  for (std::uint16_t e : errors) zero += e == 0;
+  EXPECT_GT(zero, errors.size() * 3 / 4);
+}
+
+TEST(QuantizedContainer, RoundTripsBitForBitAndIsSmaller) {
+  TempDir dir;
+  CompressedField field = sample_field();
+  align_cluster_bases(field);
+  const CompressedField q = quantize_values(field, {0.002f, 0.004f, 10});
+  write_container(dir / "f.relume", field);
+  write_container(dir / "q.relume", q);
+  ContainerOptions stored;
+  const CompressedField back = read_container(dir / "q.relume", &stored);
+  EXPECT_EQ(stored.weights, ValuePrecision::quantized);
+  EXPECT_EQ(stored.residual, ValuePrecision::quantized);
+  EXPECT_EQ(back.quantization.basis_bits, 10);
+  EXPECT_EQ(back.quantization.basis_scales, q.quantization.basis_scales);
+  EXPECT_EQ(back.quantization.weight_step, q.quantization.weight_step);
+  EXPECT_EQ(back.bases, q.bases);
+  EXPECT_EQ(back.residual.values, q.residual.values);
+  EXPECT_EQ(back.residual.light_index, q.residual.light_index);
+  for (Eigen::Index i = 0; i < q.weights.size(); ++i)
+    ASSERT_EQ(back.weights.data()[i], q.weights.data()[i]) << i;
+  EXPECT_LT(describe_container(dir / "q.relume").file_bytes,
+            describe_container(dir / "f.relume").file_bytes * 3 / 4);
+}
+
+TEST(FieldPsnr, MatchesADirectComputationAndIsInfiniteWhenExact) {
+  CompressedField field = sample_field();
+  const ReflectanceField exact = reconstruct_field(field);
+  EXPECT_TRUE(std::isinf(psnr_8bit(exact, field).whole_frame));
+  ReflectanceField shifted = exact;
+  // Every value of light 0 two levels higher (where that stays within [0, 255]).
+  double squared = 0, counted = 0;
+  for (Eigen::Index p = 0; p < shifted.values.rows(); ++p) {
+    const double level = std::round(std::clamp(exact.values(p, 0) * 255.0, 0.0, 255.0));
+    shifted.values(p, 0) = float((level + 2) / 255.0);
+    const double moved = std::round(std::clamp(double(shifted.values(p, 0)) * 255.0, 0.0, 255.0));
+    squared += (moved - level) * (moved - level);
+    ++counted;
+  }
+  const double mse = squared / counted / field.lights;  // light 0 only; the others are exact
+  EXPECT_NEAR(psnr_8bit(shifted, field).whole_frame, 20 * std::log10(255.0) - 10 * std::log10(mse),
+              1e-9);
+  EXPECT_THAT(error_message([&] { psnr_8bit(exact, field, 0.0); }), HasSubstr("white level"));
+}
+
+}  // namespace
+}  // namespace relume
