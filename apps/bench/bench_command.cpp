@@ -2,8 +2,9 @@
 // the CPU reference: GEMV, residual SpMV, full relight and batched relight on a seeded random
 // compressed field of a stated shape, or relight at the residual caps of the paper's Table 1 on a
 // container (--container), with each cap's error; and the cluster assignment kernel on seeded
-// random rows. Every record has bytes moved, GB/s and the ratio to the device's own peak (the
-// faster of a streaming read and a copy on the same device). Medians of several runs.
+// random rows. The batched relight runs at each batch size of --frames. Every record has bytes
+// moved, GB/s and the ratio to the device's own peak (the faster of a streaming read and a copy on
+// the same device). Medians of several runs.
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -13,7 +14,6 @@
 #include "bench/bench_container_sweep.hpp"
 #include "bench/bench_runs.hpp"
 #include "command_registry.hpp"
-#include "container/container.hpp"
 #include "core/progress.hpp"
 #include "json_report.hpp"
 #include "model/random_compressed_field.hpp"
@@ -24,7 +24,7 @@ namespace {
 struct BenchOptions {
   std::vector<std::string> devices;
   std::string json;
-  int frames = 16;
+  std::vector<int> frames{16};  // batch sizes of the batched relight
   int repeats = 9;
   int residual_cap = full_residual;
   RandomFieldShape shape;
@@ -55,9 +55,10 @@ std::vector<BenchRecord> bench_device(const OpenClDevice& device, const RelightS
   OpenClContext context(device);
   CeilingRuns ceilings(context, options.ceiling_mib << 20);
   OpenClRelighter relighter(context, subject.field, options.relighter);
-  RelightRuns relights(relighter, subject.points,
-                       std::vector<LightRgb>(lights.begin(), lights.begin() + options.frames),
-                       subject.with_parts);
+  std::vector<std::vector<LightRgb>> batches;
+  for (const int frames : options.frames)
+    batches.emplace_back(lights.begin(), lights.begin() + frames);
+  RelightRuns relights(relighter, subject.points, std::move(batches), subject.with_parts);
   std::optional<AssignmentRuns> assignment;
   if (problem) assignment.emplace(device, *problem);
   for (int r = 0; r < options.repeats; ++r) {
@@ -74,9 +75,11 @@ std::vector<BenchRecord> bench_device(const OpenClDevice& device, const RelightS
 }
 
 void check_options(const BenchOptions& options) {
-  if (options.frames < 1 || options.frames > options.relighter.max_batch)
-    throw Error("--frames " + std::to_string(options.frames) + " (expected 1 to --max-batch " +
-                std::to_string(options.relighter.max_batch) + ")");
+  if (options.frames.empty()) throw Error("--frames needs at least one batch size");
+  for (const int frames : options.frames)
+    if (frames < 1 || frames > options.relighter.max_batch)
+      throw Error("--frames " + std::to_string(frames) + " (expected 1 to --max-batch " +
+                  std::to_string(options.relighter.max_batch) + ")");
   if (options.repeats < 1)
     throw Error("--repeats " + std::to_string(options.repeats) + " (expected at least 1)");
   if (options.residual_cap < 0)
@@ -97,9 +100,10 @@ RelightSubject relight_subject(const BenchOptions& options) {
     subject.points = {{options.residual_cap, {}, {}}};
     return subject;
   }
-  subject.field = read_container(options.container);
-  subject.points = container_sweep_points(subject.field, options.container, options.original_field,
-                                          options.threads);
+  ContainerSweep sweep =
+      container_sweep(options.container, options.original_field, options.threads);
+  subject.field = std::move(sweep.field);
+  subject.points = std::move(sweep.points);
   subject.with_parts = false;
   return subject;
 }
@@ -142,6 +146,17 @@ nlohmann::ordered_json sweep_json(const BenchOptions& options, const RelightSubj
                                  ? nlohmann::ordered_json()
                                  : nlohmann::ordered_json(options.original_field)},
           {"points", points}};
+}
+
+// What the report says of a benched device: its names, driver and size.
+nlohmann::ordered_json device_json(const OpenClDevice& device) {
+  return {{"platform", device.platform_name},
+          {"device", device.device_name},
+          {"type", device.type},
+          {"version", device.version},
+          {"driver_version", device.driver_version},
+          {"compute_units", device.compute_units},
+          {"global_memory_bytes", device.global_memory_bytes}};
 }
 
 void run_bench(const BenchOptions& options) {
@@ -187,7 +202,8 @@ void run_bench(const BenchOptions& options) {
   }
   std::fprintf(stderr, "bench: %d runs each (medians)\n", options.repeats);
   std::vector<LightRgb> lights;
-  for (int i = 0; i < std::max(options.frames, options.repeats); ++i)
+  const int most_frames = *std::max_element(options.frames.begin(), options.frames.end());
+  for (int i = 0; i < std::max(most_frames, options.repeats); ++i)
     lights.push_back(random_light_vector(field.lights, shape.seed + 1000 + std::uint64_t(i)));
 
   ProgressReporter progress(
@@ -222,6 +238,8 @@ void run_bench(const BenchOptions& options) {
       json["residual_cap"] = residual_cap_json(options.residual_cap);
     else
       json["sweep"] = sweep_json(options, subject);
+    json["devices"] = nlohmann::ordered_json::array();
+    for (const auto& device : devices) json["devices"].push_back(device_json(device));
     json["batch_frames"] = options.frames;
     json["repeats"] = options.repeats;
     json["assignment"] =
@@ -252,8 +270,12 @@ const CommandRegistration registration{
           "OpenCL device to bench: part of \"platform / device\" as `relume devices` "
           "lists it; repeat for several (default: every device)");
       command->add_option("--json", options->json, "Also write every record to this JSON file");
-      command->add_option("--frames", options->frames,
-                          "Light vectors relit per pass by the batched kernel (default 16)");
+      command
+          ->add_option("--frames", options->frames,
+                       "Light vectors relit per pass by the batched kernel; several batch sizes, "
+                       "comma-separated, give one relight_batched record each, e.g. --frames "
+                       "1,4,16,64 --max-batch 64 (default 16)")
+          ->delimiter(',');
       command->add_option(
           "--repeats", options->repeats,
           "Timed rounds, each running every kernel once; medians are reported (default 9)");

@@ -5,9 +5,12 @@
 #include <relume/field.hpp>
 
 #include "compress/residual_selection.hpp"
+#include "container/container.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
+
+namespace {
 
 std::vector<ResidualPoint> container_sweep_points(const CompressedField& container,
                                                   const std::filesystem::path& container_path,
@@ -41,6 +44,16 @@ std::vector<ResidualPoint> container_sweep_points(const CompressedField& contain
     }
   }
   return points;
+}
+
+}  // namespace
+
+ContainerSweep container_sweep(const std::filesystem::path& container_path,
+                               const std::string& original_field, unsigned threads) {
+  ContainerSweep sweep;
+  sweep.field = read_container(container_path);
+  sweep.points = container_sweep_points(sweep.field, container_path, original_field, threads);
+  return sweep;
 }
 
 }  // namespace relume

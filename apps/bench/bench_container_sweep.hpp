@@ -12,12 +12,17 @@
 
 namespace relume {
 
-// The error is measured against the container with its full residual when `original_field` is
-// empty, else against the field loaded from `original_field` (a field folder or .lp file) over
-// the container's mask. Throws Error naming both files when their shapes differ.
-std::vector<ResidualPoint> container_sweep_points(const CompressedField& container,
-                                                  const std::filesystem::path& container_path,
-                                                  const std::string& original_field,
-                                                  unsigned threads);
+struct ContainerSweep {
+  CompressedField field;  // read from the container
+  std::vector<ResidualPoint> points;
+};
+
+// Reads the container at `container_path` and makes its points. The error is measured against
+// the container with its full residual when `original_field` is empty, else against the field
+// loaded from `original_field` (a field folder or .lp file) over the container's mask. Throws
+// Error naming both files when their shapes differ. The device-only build
+// (device_only/container_sweep_unavailable.cpp) has no containers: it throws Error saying so.
+ContainerSweep container_sweep(const std::filesystem::path& container_path,
+                               const std::string& original_field, unsigned threads);
 
 }  // namespace relume

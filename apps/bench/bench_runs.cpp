@@ -64,17 +64,21 @@ std::vector<BenchRecord> CeilingRuns::records() const {
 }
 
 RelightRuns::RelightRuns(OpenClRelighter& relighter, std::vector<ResidualPoint> points,
-                         std::vector<LightRgb> batch, bool with_parts)
+                         std::vector<std::vector<LightRgb>> batches, bool with_parts)
     : relighter_(relighter),
       points_(std::move(points)),
-      batch_(std::move(batch)),
+      batches_(std::move(batches)),
       with_parts_(with_parts),
       runs_(points_.size()),
-      frame_(1) {
+      frame_(1),
+      frames_(batches_.size()) {
+  for (PointRuns& runs : runs_) runs.batched.resize(batches_.size());
+  const LightRgb& first = batches_.at(0).at(0);
   for (const ResidualPoint& point : points_) {
-    relighter_.relight_batch_into({batch_[0]}, point.cap, frame_);
-    if (with_parts_) relighter_.relight_residual_into(batch_[0], point.cap, frame_[0]);
-    relighter_.relight_batch_into(batch_, point.cap, frames_);
+    relighter_.relight_batch_into({first}, point.cap, frame_);
+    if (with_parts_) relighter_.relight_residual_into(first, point.cap, frame_[0]);
+    for (std::size_t b = 0; b < batches_.size(); ++b)
+      relighter_.relight_batch_into(batches_[b], point.cap, frames_[b]);
   }
 }
 
@@ -94,11 +98,14 @@ void RelightRuns::run_round(const LightRgb& light) {
       runs.spmv.push_back(relighter_.last_timing().kernel("spmv").seconds);
       runs.spmv_bytes = relighter_.last_timing().kernel("spmv").bytes;
     }
-    relighter_.relight_batch_into(batch_, cap, frames_);
-    const RelightTiming& batched = relighter_.last_timing();
-    runs.batched.push_back(batched.kernel_seconds());
-    runs.batched_wall.push_back(batched.wall_seconds);
-    runs.batched_bytes = batched.kernel_bytes();
+    for (std::size_t b = 0; b < batches_.size(); ++b) {
+      relighter_.relight_batch_into(batches_[b], cap, frames_[b]);
+      const RelightTiming& timing = relighter_.last_timing();
+      BatchRuns& batched = runs.batched[b];
+      batched.kernel.push_back(timing.kernel_seconds());
+      batched.wall.push_back(timing.wall_seconds);
+      batched.bytes = timing.kernel_bytes();
+    }
   }
 }
 
@@ -122,10 +129,13 @@ std::vector<BenchRecord> RelightRuns::records(const OpenClDevice& device, double
         make_record(platform, name, "relight", runs.relight_bytes, runs.relight, peak_gbps, 1));
     records.back().wall_seconds = median_seconds(runs.relight_wall);
     records.back().residual = points_[i];
-    records.push_back(make_record(platform, name, "relight_batched", runs.batched_bytes,
-                                  runs.batched, peak_gbps, int(batch_.size())));
-    records.back().wall_seconds = median_seconds(runs.batched_wall);
-    records.back().residual = points_[i];
+    for (std::size_t b = 0; b < batches_.size(); ++b) {
+      const BatchRuns& batched = runs.batched[b];
+      records.push_back(make_record(platform, name, "relight_batched", batched.bytes,
+                                    batched.kernel, peak_gbps, int(batches_[b].size())));
+      records.back().wall_seconds = median_seconds(batched.wall);
+      records.back().residual = points_[i];
+    }
   }
   for (BenchRecord& record : records) record.layout = layout;
   return records;

@@ -8,11 +8,11 @@
 #include <optional>
 #include <vector>
 
-#include "opencl/bandwidth_ceiling.hpp"
 #include "bench/bench_records.hpp"
 #include "compress/opencl_assignment.hpp"
-#include "relight/opencl_relighter.hpp"
 #include "compress/random_assignment_problem.hpp"
+#include "opencl/bandwidth_ceiling.hpp"
+#include "relight/opencl_relighter.hpp"
 
 namespace relume {
 
@@ -37,26 +37,32 @@ class CeilingRuns {
 // The relighting kernels on one uploaded field, at each residual point.
 class RelightRuns {
  public:
-  // `batch`: the light vectors of one batched pass. with_parts: also time the GEMV and the
-  // residual SpMV on their own (gemv and spmv records). Builds the programs and touches every
-  // buffer once.
+  // `batches`: the light vectors of each batched pass, one batch per batch size. with_parts: also
+  // time the GEMV and the residual SpMV on their own (gemv and spmv records). Builds the programs
+  // and touches every buffer once.
   RelightRuns(OpenClRelighter& relighter, std::vector<ResidualPoint> points,
-              std::vector<LightRgb> batch, bool with_parts);
+              std::vector<std::vector<LightRgb>> batches, bool with_parts);
   void run_round(const LightRgb& light);
-  // Per point: [gemv, spmv,] relight, relight_batched.
+  // Per point: [gemv, spmv,] relight, then relight_batched per batch.
   std::vector<BenchRecord> records(const OpenClDevice& device, double peak_gbps) const;
 
  private:
+  struct BatchRuns {
+    std::vector<double> kernel, wall;
+    std::uint64_t bytes = 0;
+  };
   struct PointRuns {
-    std::vector<double> gemv, spmv, relight, relight_wall, batched, batched_wall;
-    std::uint64_t gemv_bytes = 0, spmv_bytes = 0, relight_bytes = 0, batched_bytes = 0;
+    std::vector<double> gemv, spmv, relight, relight_wall;
+    std::uint64_t gemv_bytes = 0, spmv_bytes = 0, relight_bytes = 0;
+    std::vector<BatchRuns> batched;  // per batch
   };
   OpenClRelighter& relighter_;
   std::vector<ResidualPoint> points_;
-  std::vector<LightRgb> batch_;
+  std::vector<std::vector<LightRgb>> batches_;
   bool with_parts_;
   std::vector<PointRuns> runs_;  // per point
-  std::vector<Image> frame_, frames_;
+  std::vector<Image> frame_;
+  std::vector<std::vector<Image>> frames_;  // per batch, so that no round reallocates them
 };
 
 // Global memory one assignment call moves: the rows, the candidate lists and the bases read

@@ -1,9 +1,11 @@
 // Tests of the `relume devices` and `relume bench` commands, run as the built binary on PoCL: the
 // listing marks the default device, the benchmark writes one JSON record per (device, kernel)
-// with the required fields (assignment included), the --container sweep writes one record per
+// with the required fields (assignment included; batched relight once per --frames batch size)
+// and names the devices it benched, the --container sweep writes one record per
 // residual cap with errors that fall as the cap grows, and bad options fail with a message.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <vector>
@@ -29,13 +31,19 @@ TEST(BenchCommand, WritesOneRecordPerDeviceAndKernel) {
   const auto json_path = folder / "bench.json";
   const auto result = run_relume(
       "bench --device portable --width 16 --height 8 --lights 9 --clusters 3 --terms 3 "
-      "--residual 4 --cap 2 --repeats 3 --frames 3 --ceiling-mib 4 --assign-rows 64 --json '" +
+      "--residual 4 --cap 2 --repeats 3 --frames 3,5 --ceiling-mib 4 --assign-rows 64 --json '" +
       json_path.string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("relight_batched"), std::string::npos) << result.output;
   const auto json = nlohmann::json::parse(read_file(json_path));
   EXPECT_EQ(json["field"]["stored_rows"], 16 * 8 * 3);
+  EXPECT_EQ(json["batch_frames"], nlohmann::json({3, 5}));
+  ASSERT_EQ(json["devices"].size(), 1u);
+  EXPECT_EQ(json["devices"][0]["platform"], "Portable Computing Language");
+  EXPECT_EQ(json["devices"][0]["type"], "cpu");
+  EXPECT_FALSE(json["devices"][0]["driver_version"].get<std::string>().empty());
   std::set<std::pair<std::string, std::string>> seen;
+  std::map<int, double> batched_bytes;  // PoCL's relight_batched records by batch size
   for (const auto& record : json["records"]) {
     for (const char* key :
          {"platform", "device", "kernel", "bytes", "seconds", "gbps", "ratio_to_peak"})
@@ -52,7 +60,8 @@ TEST(BenchCommand, WritesOneRecordPerDeviceAndKernel) {
                   record["gbps"].get<double>() / record["peak_gbps"].get<double>(), 1e-9);
     }
     if (kernel == "relight_batched") {
-      EXPECT_EQ(record["frames"], 3);
+      EXPECT_TRUE(batched_bytes.emplace(record["frames"].get<int>(), record["bytes"]).second)
+          << "one record per batch size: " << record.dump();
     }
     if (kernel == "spmv" || kernel == "relight") {
       EXPECT_EQ(record["residual_cap"], 2);
@@ -82,6 +91,10 @@ TEST(BenchCommand, WritesOneRecordPerDeviceAndKernel) {
     EXPECT_TRUE(seen.count({"Portable Computing Language", kernel})) << kernel;
   for (const char* kernel : {"gemv", "spmv", "relight", "assign"})
     EXPECT_TRUE(seen.count({"reference", kernel})) << kernel;
+  // One record per --frames batch size; a larger batch writes more frames from the same reads.
+  ASSERT_EQ(batched_bytes.size(), 2u);
+  ASSERT_TRUE(batched_bytes.count(3) && batched_bytes.count(5));
+  EXPECT_GT(batched_bytes[5], batched_bytes[3]);
   EXPECT_EQ(json["assignment"]["rows"], 64);
   EXPECT_EQ(json["assignment"]["candidates"], 3);
 }
@@ -187,6 +200,10 @@ TEST(BenchCommand, RefusesBadOptions) {
   auto result = run_relume("bench --frames 0 --repeats 1");
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("--frames 0"), std::string::npos) << result.output;
+  result = run_relume("bench --frames 4,40 --repeats 1");
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("--frames 40 (expected 1 to --max-batch 32)"), std::string::npos)
+      << result.output;
   result = run_relume("bench --device no-such-device-anywhere --repeats 1");
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("no-such-device-anywhere"), std::string::npos) << result.output;
