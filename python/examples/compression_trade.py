@@ -108,7 +108,8 @@ def main():
     plot.set_ylabel("error")
     plot.set_title("size against quality")
     plot.legend(fontsize=8)
-    panels = [("uncompressed", reference), (f"n={points[0]['residual']}", relit_images[0]),
+    inside = field.mask[..., None] > 0  # what a compressed field stores
+    panels = [("uncompressed (masked)", reference * inside), (f"n={points[0]['residual']}", relit_images[0]),
               (f"n={points[-1]['residual']}", relit_images[-1])]
     for index, (title, image) in enumerate(panels):
         axis = figure.add_subplot(1, 4, index + 2)

@@ -27,13 +27,17 @@ def run_relume(*arguments):
     return completed
 
 
-@pytest.fixture(scope="session")
-def scene(tmp_path_factory):
-    """A 32x24 field folder with 40 lights over the sphere, rendered by `relume synth`."""
-    folder = tmp_path_factory.mktemp("scene") / "scene"
-    run_relume("synth", "-o", folder, "--size", "32x24", "--lights", "40", "--samples", "1",
+def synth_scene(folder, size, lights):
+    """A field folder rendered by `relume synth` (lights over the whole sphere)."""
+    run_relume("synth", "-o", folder, "--size", size, "--lights", lights, "--samples", "1",
                "--threads", "2")
     return folder
+
+
+@pytest.fixture(scope="session")
+def scene(tmp_path_factory):
+    """32x24 pixels, 40 lights."""
+    return synth_scene(tmp_path_factory.mktemp("scene") / "scene", "32x24", 40)
 
 
 @pytest.fixture(scope="session")
