@@ -127,7 +127,8 @@ void bind_compress(py::module_& module) {
       "residual_precision"_a = "float32", "target_error"_a = py::none(), "quiet"_a = true,
       "progress"_a = py::none(),
       R"(Compress a reflectance field by clustered sparse residual factorization, as
-`relume compress` does (same options, same defaults, same result for the same seed).
+`relume compress` does (same options, same defaults, same result for the same seed; the
+command's -o, --report and --resume have no counterpart: save() writes the container).
 
 field: a relume.Field, or values float32 (height, width, channels, lights) with dirs
 (lights, 3) and optionally mask (height, width) and intensities (lights, 3); the array is

@@ -7,7 +7,8 @@
 // PyErr_CheckSignals runs Python's signal handlers (Ctrl-C raises KeyboardInterrupt there when the
 // caller is the main thread). A Python exception from either is kept and an interruption is
 // requested (lib/core/interruption.hpp): the library unwinds at its next check and returns
-// nothing. run() then clears the request and raises the kept exception, with the GIL back.
+// nothing. run() then clears the request and raises the kept exception, with the GIL back. The
+// request is process-wide: relume work running on other threads at that moment may stop too.
 #pragma once
 
 #include <pybind11/pybind11.h>

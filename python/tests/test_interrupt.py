@@ -73,7 +73,7 @@ def run_child(*arguments):
 
 @pytest.mark.parametrize("what, assign, callback", [
     ("compress", "cpu", "callback"), ("compress", "cpu", "none"), ("compress", "opencl", "none"),
-    ("factor", "-", "callback"), ("factor", "-", "none")])
+    ("factor", "-", "none")])
 def test_sigint_raises_keyboard_interrupt_soon_and_the_next_call_runs(larger_scene, what, assign,
                                                                       callback):
     lines = run_child(what, larger_scene, assign, callback)
