@@ -5,16 +5,19 @@
 // function) are clustered by L1 factorization (IRLS fits; the reassignment fits run on an OpenCL
 // device or in C++), and each keeps its largest residual entries. The result is what
 // relume/container.hpp stores and relume/relight.hpp relights. The `relume compress` command
-// offers more (a target error, checkpoints and resume, exact LP refits, reports).
+// adds checkpoints with resume and JSON reports.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <relume/compressed_field.hpp>
+#include <relume/container.hpp>
 #include <relume/field.hpp>
 #include <string>
 
 namespace relume {
 
+// The options of `relume compress` (its --help explains each), with the same defaults.
 struct CompressOptions {
   int clusters = 64;  // K
   int terms = 4;      // t, basis functions per cluster (1 to 16)
@@ -24,17 +27,38 @@ struct CompressOptions {
   double residual_percent = 5.0;
   float residual_threshold = 0.0f;  // entries with |value| <= this (field units) are dropped
   BasisTransform transform = BasisTransform::identity;
-  int multires_levels = 0;  // cluster a field downsampled 2x per level first
-  int iterations = 4;       // cap on L1 iterations (F-step + reassignment)
-  std::uint64_t seed = 1;   // of the cluster seeding
-  unsigned threads = 0;     // 0 = all cores
+  int multires_levels = 0;    // cluster a field downsampled 2x per level first
+  int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering
+  int iterations = 4;         // cap on L1 iterations (F-step + reassignment)
+  int candidates = 3;         // clusters given the exact L1 fit per function
+  int irls_iterations = 5;    // reweighted solves of every IRLS L1 fit
+  int min_cluster_size = -1;  // smaller clusters merge away; -1 = max(8, 2 * terms)
+  int max_cluster_size = 0;   // larger clusters split; 0 = no limit
+  // "irls": the IRLS fits only; "lp-dual", "lp" or "huber": refit every cluster's F and W
+  // exactly with that solver after the iterations.
+  std::string solver = "irls";
+  std::uint64_t seed = 1;  // of the cluster seeding
+  unsigned threads = 0;    // 0 = all cores
   // Reassignment fits on this OpenCL device (see RelighterOptions::device); false: the C++ path.
   bool opencl_assignment = true;
   std::string device;
+  // > 0: choose terms and clusters from a small grid and per-function residual lengths that reach
+  // this relative error (paper Eq. 16, masked functions) with the fewest container bytes, counted
+  // with the two precisions below (`relume compress --target-error`); clusters, terms and the
+  // residual budget above are then not used.
+  double target_error = 0;
+  ValuePrecision weights_precision = ValuePrecision::float32;
+  ValuePrecision residual_precision = ValuePrecision::float32;
   bool quiet = true;  // no progress lines on stderr
+  // Told (phase, fraction of it done in [0, 1]) at the start and end of each phase and about
+  // every 0.1 s in between, on the thread that called compress(), e.g. ("compress: iteration 2,
+  // assigning", 0.4). An exception it throws ends compress() and propagates: throw Interrupted
+  // (relume/error.hpp) to stop it as Ctrl-C would.
+  std::function<void(const std::string& phase, double fraction)> progress;
 };
 
-// Throws Error for options out of range or a field with nothing to store.
+// Throws Error for options out of range or a field with nothing to store, Interrupted when an
+// interruption was requested (lib/core/interruption.hpp, e.g. by a Ctrl-C handler).
 CompressedField compress(const ReflectanceField& field, const CompressOptions& options = {});
 
 }  // namespace relume

@@ -1,4 +1,5 @@
-// Implementation of the clustered L1 alternation (see cluster_iterations.hpp).
+// Implementation of the clustered L1 alternation (see cluster_iterations.hpp). Interruptible
+// between its steps (lib/core/interruption.hpp).
 #include "compress/cluster_iterations.hpp"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_seeding.hpp"
 #include "core/elapsed_time.hpp"
+#include "core/interruption.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 
@@ -37,9 +39,9 @@ std::size_t reassign(const WorkingRows& rows, ClusterModel& model, const Cluster
   trace.candidate_seconds += seconds_since(start);
 
   start = Clock::now();
-  AssignmentResult result = run_assignment(
-      rows, model, candidates, options,
-      "compress: iteration " + std::to_string(record.iteration) + ", assigning");
+  AssignmentResult result =
+      run_assignment(rows, model, candidates, options,
+                     "compress: iteration " + std::to_string(record.iteration) + ", assigning");
   trace.assignment_seconds += seconds_since(start);
   std::size_t changed = 0;
   for (std::size_t r = 0; r < rows.rows(); ++r) changed += result.best[r] != model.assignment[r];
@@ -93,7 +95,8 @@ void refit_exactly(const WorkingRows& rows, ClusterModel& model, const Clusterin
     RowMatrixF new_weights(static_cast<Eigen::Index>(list.size()), terms);
     // GLPK problems must be created, used and freed on one thread: each worker owns its solver
     // for the whole loop and takes every workers-th row.
-    const std::size_t workers = std::min<std::size_t>(resolve_thread_count(options.threads), list.size());
+    const std::size_t workers =
+        std::min<std::size_t>(resolve_thread_count(options.threads), list.size());
     parallel_for(workers, unsigned(workers), [&](std::size_t worker, unsigned) {
       LadSolver solver(design, l1);
       for (std::size_t p = worker; p < list.size(); p += workers) {
@@ -116,17 +119,24 @@ void refit_exactly(const WorkingRows& rows, ClusterModel& model, const Clusterin
 
 }  // namespace
 
-void iterate_clusters(const WorkingRows& rows, ClusterModel& model, const ClusteringOptions& options,
-                      int iterations, ClusteringTrace& trace, const IterationHook& hook) {
+void iterate_clusters(const WorkingRows& rows, ClusterModel& model,
+                      const ClusteringOptions& options, int iterations, ClusteringTrace& trace,
+                      const IterationHook& hook) {
+  const bool fit_weights_first = model.weights.rows() != static_cast<Eigen::Index>(rows.rows());
+  // Iterations done, for a progress listener only (quiet: a second bar would garble the
+  // assignment's on a terminal); its advance() is where an interruption ends the iterations.
+  ProgressReporter progress("compress: iterations", std::uint64_t(iterations + fit_weights_first),
+                            true);
   const auto finish_iteration = [&](IterationRecord& record, std::size_t changed,
                                     Clock::time_point start) {
     record.changed = changed;
     record.seconds = seconds_since(start);
     trace.iterations.push_back(record);
     if (hook) hook(model, record);
+    progress.advance();
   };
   int next = trace.iterations.empty() ? 0 : trace.iterations.back().iteration + 1;
-  if (model.weights.rows() != static_cast<Eigen::Index>(rows.rows())) {
+  if (fit_weights_first) {
     const auto start = Clock::now();
     IterationRecord record;
     record.iteration = next++;
@@ -139,6 +149,7 @@ void iterate_clusters(const WorkingRows& rows, ClusterModel& model, const Cluste
     IterationRecord record;
     record.iteration = next++;
     fit_bases(rows, model, options, trace);
+    throw_if_interrupted();
     const std::size_t changed = reassign(rows, model, options, trace, record);
     finish_iteration(record, changed, start);
     if (double(changed) <= options.settle_fraction * double(rows.rows())) {
@@ -146,6 +157,7 @@ void iterate_clusters(const WorkingRows& rows, ClusterModel& model, const Cluste
       break;
     }
   }
+  progress.finish();
   if (options.exact_refit) refit_exactly(rows, model, options, trace);
 }
 

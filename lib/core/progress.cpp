@@ -1,15 +1,22 @@
-// Implementation of ProgressReporter: bar with ETA on a terminal, periodic plain lines otherwise.
+// Implementation of ProgressReporter: bar with ETA on a terminal, periodic plain lines otherwise;
+// the listener of its thread told at the start, every 0.1 s of advances and at the finish.
 #include "core/progress.hpp"
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
 #include "core/console.hpp"
+#include "core/interruption.hpp"
 
 namespace relume {
 namespace {
+
+thread_local const ProgressListener* current_listener = nullptr;
+
+constexpr auto listener_period = std::chrono::milliseconds(100);
 
 // RELUME_QUIET set to anything but "" or "0" (test runs, logs) silences every progress bar.
 bool quiet_by_environment() {
@@ -19,12 +26,26 @@ bool quiet_by_environment() {
 
 }  // namespace
 
+ProgressListenerScope::ProgressListenerScope(ProgressListener listener)
+    : listener_(std::move(listener)), previous_(current_listener) {
+  if (listener_) current_listener = &listener_;
+}
+
+ProgressListenerScope::~ProgressListenerScope() { current_listener = previous_; }
+
 ProgressReporter::ProgressReporter(std::string title, std::uint64_t total, bool quiet)
     : title_(std::move(title)),
       total_(total),
       quiet_(quiet || verbosity() == Verbosity::quiet || quiet_by_environment()),
       terminal_(isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()) {
+      start_(std::chrono::steady_clock::now()),
+      owner_(std::this_thread::get_id()),
+      last_told_(start_) {
+  // Told before the printing thread starts: a listener that throws leaves nothing running.
+  if (current_listener) {
+    listener_ = *current_listener;
+    listener_(title_, 0.0);
+  }
   if (!quiet_) thread_ = std::thread([this] { run(); });
 }
 
@@ -44,15 +65,29 @@ double ProgressReporter::elapsed_seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-void ProgressReporter::finish() {
-  if (!thread_.joinable()) return;
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
+void ProgressReporter::advance(std::uint64_t units) {
+  done_ += units;
+  if (listener_ && std::this_thread::get_id() == owner_) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_told_ >= listener_period) {
+      last_told_ = now;
+      listener_(title_, total_ ? std::min(1.0, double(done_.load()) / double(total_)) : 1.0);
+    }
   }
-  wake_.notify_all();
-  thread_.join();
-  print(true);
+  throw_if_interrupted();
+}
+
+void ProgressReporter::finish() {
+  if (thread_.joinable()) {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+    print(true);
+  }
+  if (listener_) listener_(title_, 1.0);
 }
 
 void ProgressReporter::run() {

@@ -1,0 +1,216 @@
+# Type stub of the relume extension module (python/src/): its whole interface with types, for
+# editors, type checkers and notebooks. The docstrings of the module itself say more.
+import os
+from typing import Callable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+version_line: str
+
+PathLike = Union[str, os.PathLike]
+ArrayLike = npt.ArrayLike
+Float32Array = npt.NDArray[np.float32]
+Progress = Callable[[str, float], object]
+
+class Error(ValueError):
+    """A relume error: bad input (an option, an array, a value) or failed work."""
+
+class FileError(Error, OSError):
+    """A relume error about a file: missing, unreadable, not what it should be, or not writable."""
+
+class Field:
+    """A fixed-viewpoint reflectance field; array attributes are read-only views (no copy)."""
+
+    def __init__(
+        self,
+        values: Float32Array,
+        dirs: ArrayLike,
+        *,
+        mask: Optional[ArrayLike] = None,
+        intensities: Optional[ArrayLike] = None,
+    ) -> None: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def channels(self) -> int: ...
+    @property
+    def lights(self) -> int: ...
+    @property
+    def values(self) -> Float32Array:
+        """(height, width, channels, lights)."""
+    @property
+    def mask(self) -> npt.NDArray[np.uint8]:
+        """(height, width), 1 = inside."""
+    @property
+    def directions(self) -> Float32Array:
+        """(lights, 3), unit vectors towards the lights."""
+    @property
+    def intensities(self) -> Float32Array:
+        """(lights, 3)."""
+    @property
+    def image_names(self) -> list[str]: ...
+    def relight(self, light: ArrayLike, *, threads: int = 0) -> Float32Array:
+        """The uncompressed field relit: (height, width, channels)."""
+    def save(self, folder: PathLike) -> None: ...
+
+class Compressed:
+    """A compressed reflectance field; array attributes are read-only views (no copy)."""
+
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def channels(self) -> int: ...
+    @property
+    def lights(self) -> int: ...
+    @property
+    def terms(self) -> int: ...
+    @property
+    def clusters(self) -> int: ...
+    @property
+    def stored_rows(self) -> int: ...
+    @property
+    def transform(self) -> str: ...
+    @property
+    def mask(self) -> npt.NDArray[np.uint8]: ...
+    @property
+    def directions(self) -> Float32Array: ...
+    @property
+    def intensities(self) -> Float32Array: ...
+    @property
+    def stored_function(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def cluster(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def weights(self) -> Float32Array:
+        """(stored_rows, terms)."""
+    @property
+    def bases(self) -> Float32Array:
+        """(clusters, terms, lights)."""
+    @property
+    def residual_offsets(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def residual_indices(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def residual_values(self) -> Float32Array: ...
+    @property
+    def weights_precision(self) -> str: ...
+    @property
+    def residual_precision(self) -> str: ...
+    @property
+    def parameters(self) -> dict: ...
+    def relight(
+        self,
+        light: ArrayLike,
+        *,
+        residual: Optional[int] = None,
+        device: Optional[str] = None,
+        reference: bool = False,
+    ) -> Float32Array:
+        """Relit image (height, width, channels) under a light vector (lights, 3)."""
+    def relight_batch(
+        self,
+        lights: ArrayLike,
+        *,
+        residual: Optional[int] = None,
+        device: Optional[str] = None,
+        reference: bool = False,
+    ) -> Float32Array:
+        """Relit images (count, height, width, channels) under (count, lights, 3)."""
+    def reconstruct(self, *, residual: Optional[int] = None) -> Field: ...
+    def save(
+        self,
+        path: PathLike,
+        *,
+        weights_precision: Optional[str] = None,
+        residual_precision: Optional[str] = None,
+        light_index: str = "auto",
+    ) -> None: ...
+    def file_size(
+        self,
+        *,
+        weights_precision: Optional[str] = None,
+        residual_precision: Optional[str] = None,
+        light_index: str = "auto",
+    ) -> int: ...
+
+def load(path: PathLike, *, srgb: bool = False, threads: int = 0) -> Field: ...
+def open(path: PathLike) -> Compressed: ...
+def compress(
+    field: Union[Field, Float32Array],
+    dirs: Optional[ArrayLike] = None,
+    *,
+    mask: Optional[ArrayLike] = None,
+    intensities: Optional[ArrayLike] = None,
+    clusters: int = 64,
+    terms: int = 4,
+    residual: Union[int, str] = "5%",
+    threshold: float = 0.0,
+    solver: str = "irls",
+    transform: str = "identity",
+    multires: int = 0,
+    refine: int = 2,
+    iterations: int = 4,
+    candidates: int = 3,
+    irls_iterations: int = 5,
+    min_cluster_size: Optional[int] = None,
+    max_cluster_size: int = 0,
+    seed: int = 1,
+    threads: int = 0,
+    assign: str = "opencl",
+    device: str = "",
+    weights_precision: str = "float32",
+    residual_precision: str = "float32",
+    target_error: Optional[float] = None,
+    quiet: bool = True,
+    progress: Optional[Progress] = None,
+) -> Compressed: ...
+def relative_error(
+    original: Field,
+    compressed: Compressed,
+    *,
+    masked: bool = True,
+    residual: Optional[int] = None,
+    threads: int = 0,
+) -> float: ...
+def light_vector(
+    dirs: ArrayLike,
+    env: Union[PathLike, ArrayLike],
+    *,
+    rotate: Union[float, Sequence[float], ArrayLike] = 0.0,
+    layout: str = "auto",
+    threads: int = 0,
+) -> Float32Array:
+    """(lights, 3) for one angle, (count, lights, 3) for a sequence of angles."""
+def sky(
+    *,
+    width: int = 512,
+    sun_elevation: float = 35.0,
+    sun_azimuth: float = 30.0,
+    sun_radiance: float = 5000.0,
+    sun_radius: float = 2.0,
+) -> Float32Array: ...
+def factor(
+    matrix: ArrayLike,
+    terms: int,
+    *,
+    solver: str = "lp-dual",
+    init: str = "random-basis",
+    seed: int = 1,
+    max_iterations: int = 50,
+    tolerance: float = 1e-8,
+    residual_threshold: Optional[float] = None,
+    gamma: float = 1e-3,
+    irls_tolerance: float = 1e-6,
+    nonnegative_residual: bool = False,
+    threads: int = 0,
+    progress: Optional[Progress] = None,
+) -> Tuple[npt.NDArray, npt.NDArray, npt.NDArray]:
+    """(W, F, E) in the matrix's dtype."""
+def read_image(path: PathLike, *, srgb: bool = False) -> Float32Array: ...
+def write_image(path: PathLike, image: ArrayLike, *, exposure: float = 0.0) -> None: ...

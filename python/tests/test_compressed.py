@@ -1,0 +1,176 @@
+"""relume.Compressed: its arrays are read-only views of its own memory and hold what a direct
+NumPy evaluation of R ~ W F + E needs; relighting (CPU reference and OpenCL, whole and batched,
+with a residual cap) equals `relume relight` and that evaluation; reconstruct equals
+`relume decompress`; save and open round-trip; and bad input raises relume errors."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+import relume
+from conftest import SMALL, cli_options, run_relume
+
+
+@pytest.fixture(scope="module")
+def light(field, sky_map):
+    return relume.light_vector(field.directions, sky_map, rotate=30)
+
+
+@pytest.fixture(scope="module")
+def saved(compressed, tmp_path_factory):
+    path = tmp_path_factory.mktemp("saved") / "scene.relume"
+    compressed.save(path)
+    return path
+
+
+def numpy_relight(compressed, light, cap=None):
+    """out[p] = W[s] . (F^k I[:, c]) + sum of the first `cap` residual entries E[s, e] I[e, c]."""
+    out = np.zeros(compressed.height * compressed.width * compressed.channels)
+    offsets = compressed.residual_offsets
+    for s, p in enumerate(compressed.stored_function):
+        c = p % compressed.channels
+        basis = compressed.bases[compressed.cluster[s]].astype(np.float64)
+        value = compressed.weights[s].astype(np.float64) @ (basis @ light[:, c])
+        end = offsets[s + 1] if cap is None else min(offsets[s + 1], offsets[s] + cap)
+        entries = slice(offsets[s], end)
+        value += compressed.residual_values[entries] @ light[compressed.residual_indices[entries], c]
+        out[p] = value
+    return out.reshape(compressed.height, compressed.width, compressed.channels)
+
+
+def test_arrays_are_read_only_views_with_the_documented_shapes(compressed):
+    c = compressed
+    rows = c.stored_rows
+    shapes = {"weights": (rows, c.terms), "bases": (c.clusters, c.terms, c.lights),
+              "cluster": (rows,), "stored_function": (rows,), "residual_offsets": (rows + 1,),
+              "mask": (c.height, c.width), "directions": (c.lights, 3)}
+    for name, shape in shapes.items():
+        view = getattr(c, name)
+        assert view.shape == shape, name
+        assert view.base is c, name
+        assert not view.flags.writeable and not view.flags.owndata, name
+        again = getattr(c, name)
+        assert view.__array_interface__["data"][0] == again.__array_interface__["data"][0], name
+    assert c.residual_offsets[-1] == c.residual_values.size == c.residual_indices.size
+    assert c.weights.dtype == np.float32 and c.cluster.dtype == np.uint32
+    with pytest.raises(ValueError):
+        c.weights[0, 0] = 1
+
+
+def test_cpu_reference_relight_equals_numpy_and_the_command(compressed, saved, light, tmp_path):
+    relit = compressed.relight(light, reference=True)
+    assert relit.shape == (compressed.height, compressed.width, compressed.channels)
+    assert relit.dtype == np.float32
+    np.testing.assert_allclose(relit, numpy_relight(compressed, light.astype(np.float64)),
+                               rtol=1e-5, atol=1e-6)
+    lights_file = tmp_path / "light.txt"
+    np.savetxt(lights_file, light, fmt="%.9g")
+    run_relume("relight", saved, "--lights", lights_file, "--cpu", "-o", tmp_path / "cli.exr")
+    np.testing.assert_array_equal(relit, relume.read_image(tmp_path / "cli.exr"))
+
+
+def test_opencl_relight_equals_the_command_and_the_reference(compressed, saved, light, tmp_path):
+    relit = compressed.relight(light)
+    np.testing.assert_allclose(relit, compressed.relight(light, reference=True), rtol=1e-4,
+                               atol=1e-5)
+    lights_file = tmp_path / "light.txt"
+    np.savetxt(lights_file, light, fmt="%.9g")
+    run_relume("relight", saved, "--lights", lights_file, "--residual", "2",
+               "-o", tmp_path / "cli.exr")
+    np.testing.assert_array_equal(compressed.relight(light, residual=2),
+                                  relume.read_image(tmp_path / "cli.exr"))
+
+
+def test_a_residual_cap_uses_the_largest_entries_only(compressed, light):
+    for cap in (0, 1, 3):
+        np.testing.assert_allclose(compressed.relight(light, residual=cap, reference=True),
+                                   numpy_relight(compressed, light.astype(np.float64), cap),
+                                   rtol=1e-5, atol=1e-6)
+
+
+def test_relight_batch_equals_one_relight_per_light(compressed, field, sky_map):
+    lights = relume.light_vector(field.directions, sky_map, rotate=[0, 45, 90])
+    for reference in (True, False):
+        frames = compressed.relight_batch(lights, reference=reference)
+        assert frames.shape == (3, compressed.height, compressed.width, compressed.channels)
+        for frame, one in zip(frames, lights):
+            np.testing.assert_allclose(frame, compressed.relight(one, reference=reference),
+                                       rtol=1e-5, atol=1e-6)
+
+
+def test_reconstruct_equals_the_command_decompress(compressed, saved, tmp_path):
+    run_relume("decompress", saved, "-o", tmp_path / "back", "--residual", "2")
+    ours = compressed.reconstruct(residual=2)
+    assert isinstance(ours, relume.Field)
+    np.testing.assert_array_equal(ours.values, relume.load(tmp_path / "back").values)
+    full = compressed.reconstruct()
+    assert not np.array_equal(full.values, ours.values)
+
+
+def test_save_and_open_round_trip(compressed, saved, tmp_path):
+    opened = relume.open(saved)
+    for name in ("stored_function", "cluster", "weights", "bases", "residual_offsets",
+                 "residual_indices", "residual_values", "mask", "directions", "intensities"):
+        np.testing.assert_array_equal(getattr(opened, name), getattr(compressed, name), name)
+    assert os.path.getsize(saved) == compressed.file_size()
+    assert opened.parameters["written_from"] == "python"
+    assert opened.parameters["seed"] == SMALL["seed"]
+    info = json.loads(run_relume("info", saved, "--json").stdout)
+    assert info["clusters"] == compressed.clusters
+
+
+def test_half_precision_is_smaller_and_close(compressed, field, tmp_path):
+    path = tmp_path / "half.relume"
+    compressed.save(path, weights_precision="float16", residual_precision="float16")
+    half = relume.open(path)
+    assert half.weights_precision == "float16" and half.residual_precision == "float16"
+    assert os.path.getsize(path) < compressed.file_size()
+    assert os.path.getsize(path) == compressed.file_size(weights_precision="float16",
+                                                         residual_precision="float16")
+    np.testing.assert_allclose(half.weights, compressed.weights, rtol=1e-3, atol=1e-4)
+    assert not np.array_equal(half.weights, compressed.weights)
+
+
+def test_relative_error_equals_the_command_report(scene, field, tmp_path):
+    report = tmp_path / "report.json"
+    run_relume("compress", scene, "-o", tmp_path / "cli.relume", "--report", report,
+               *cli_options(SMALL))
+    ours = relume.relative_error(field, relume.open(tmp_path / "cli.relume"))
+    assert ours == pytest.approx(json.loads(report.read_text())["error_masked"], rel=1e-12)
+    assert 0 < ours < 1
+
+
+def test_bad_relight_input_raises_relume_errors(compressed, light):
+    with pytest.raises(relume.Error, match=r"light must have shape \(40, 3\), got \(39, 3\)"):
+        compressed.relight(light[:39])
+    bad = light.copy()
+    bad[3, 1] = np.inf
+    with pytest.raises(relume.Error, match=r"light\[3, 1\] is inf"):
+        compressed.relight(bad)
+    with pytest.raises(relume.Error, match=r"light must hold real numbers"):
+        compressed.relight(light.astype(np.complex64))
+    with pytest.raises(relume.Error, match=r"residual must be a count of entries >= 0"):
+        compressed.relight(light, residual=-1)
+    with pytest.raises(relume.Error, match="not both"):
+        compressed.relight(light, device="pthread", reference=True)
+    with pytest.raises(relume.Error, match="no-such-device"):
+        compressed.relight(light, device="no-such-device")
+    with pytest.raises(relume.Error, match=r"lights must have shape \(count, 40, 3\)"):
+        compressed.relight_batch(light)
+
+
+def test_bad_files_raise_file_errors(saved, tmp_path):
+    with pytest.raises(relume.FileError) as raised:
+        relume.open(tmp_path / "missing.relume")
+    assert isinstance(raised.value, OSError) and isinstance(raised.value, relume.Error)
+    assert "missing.relume" in str(raised.value)
+    truncated = tmp_path / "truncated.relume"
+    truncated.write_bytes(saved.read_bytes()[:-100])
+    with pytest.raises(relume.FileError, match="truncated.relume"):
+        relume.open(truncated)
+    with pytest.raises(relume.FileError, match="no-folder"):
+        relume.open(tmp_path / "no-folder" / "x.relume")
+    compressed = relume.open(saved)
+    with pytest.raises(relume.FileError):
+        compressed.save(tmp_path / "no-folder" / "x.relume")
