@@ -18,6 +18,7 @@
 #include "compress/compression_report.hpp"
 #include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
+#include "compress/storage_precision.hpp"
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
 #include "core/console.hpp"
@@ -25,7 +26,6 @@
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "json_report.hpp"
-#include "model/quantization.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -98,36 +98,31 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     write_checkpoint(checkpoint, print, model, stats.clustering.iterations);
   };
 
-  ContainerOptions container;
-  container.weights = parse_value_precision(arguments.weights_precision);
-  container.residual = parse_value_precision(arguments.residual_precision);
   if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
     throw Error("--bases-precision must be 'quantized' or 'float32', got '" +
                 arguments.bases_precision + "'");
-  if (!(arguments.quantization_budget > 0) || !std::isfinite(arguments.quantization_budget))
-    throw Error("--quantization-budget must be a relative error increase > 0, got " +
-                std::to_string(arguments.quantization_budget));
 
-  // What the file stores: W, F and E quantized within the error budget (quantize_with_budget),
-  // and half precision where asked for float parts; `compressed` stays for the report.
-  QuantizationBudget budget;
-  budget.relative_increase = arguments.quantization_budget;
-  budget.weights = container.weights == ValuePrecision::quantized;
-  budget.residual = container.residual == ValuePrecision::quantized;
-  budget.bases = arguments.bases_precision == "quantized";
-  budget.threads = options.clustering.threads;
-  const bool quantize = budget.weights || budget.residual || budget.bases;
+  // What the file stores (store_with_precision); `compressed` stays for the report.
+  StoragePrecision precision;
+  precision.weights = parse_value_precision(arguments.weights_precision);
+  precision.residual = parse_value_precision(arguments.residual_precision);
+  precision.quantize_bases = arguments.bases_precision == "quantized";
+  precision.budget = arguments.quantization_budget;
+  precision.threads = options.clustering.threads;
+  ContainerOptions container = precision.container_options();
+  const QuantizationBudget budget = precision.quantization_budget();
 
   CompressedField compressed, stored;
   std::optional<QuantizationChoice> quantization;
   nlohmann::ordered_json target_choice;
   auto quantize_start = Clock::now();
   if (arguments.target_error > 0) {
-    TargetSearch search = compress_to_target_error(field, options, arguments.target_error,
-                                                   container, quantize ? &budget : nullptr, stats);
+    TargetSearch search =
+        compress_to_target_error(field, options, arguments.target_error, container,
+                                 precision.quantizes() ? &budget : nullptr, stats);
     quantize_start = Clock::now();
-    stored = std::move(search.field);  // already quantized
-    compressed = stored;
+    compressed = search.field;  // already quantized
+    stored = quantize_for_container(search.field, container);
     quantization = search.quantization;
     options = search.options;
     target_choice = search.explanation;
@@ -135,9 +130,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     compressed = compress_field(field, options, stats, hook, resume ? &*resume : nullptr);
     quantize_start = Clock::now();
     stored = compressed;
-    if (quantize) quantization = quantize_with_budget(field, stored, budget);
+    quantization = store_with_precision(field, stored, precision);
   }
-  stored = quantize_for_container(stored, container);
   const double quantize_seconds = seconds_since(quantize_start);
 
   const auto write_start = Clock::now();
@@ -177,7 +171,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
          relative_error(compressed, stored, all_residual_entries, run.threads).mean}};
     if (quantization)
       report["precision_cost"]["quantization"] = {
-          {"budget", budget.relative_increase},
+          {"budget", precision.budget},
           {"weight_step", quantization->steps.weight_step},
           {"residual_step", quantization->steps.residual_step},
           {"basis_bits", quantization->steps.basis_bits},

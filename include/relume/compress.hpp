@@ -44,12 +44,16 @@ struct CompressOptions {
   std::string device;
   // > 0: choose terms and clusters from a small grid and per-function residual lengths that reach
   // this relative error (paper Eq. 16, masked functions) with the fewest container bytes, counted
-  // with the two precisions below (`relume compress --target-error`); clusters, terms and the
-  // residual budget above are then not used.
+  // as stored with the precisions below (`relume compress --target-error`); clusters, terms and
+  // the residual budget above are then not used.
   double target_error = 0;
-  ValuePrecision weights_precision = ValuePrecision::float32;
-  ValuePrecision residual_precision = ValuePrecision::float32;
-  bool quiet = true;  // no progress lines on stderr
+  // How the result is stored (what compress returns is what the container holds): quantized
+  // (integers times the coarsest steps within quantization_budget), float32 or float16.
+  ValuePrecision weights_precision = ValuePrecision::quantized;
+  ValuePrecision residual_precision = ValuePrecision::quantized;
+  bool quantize_bases = true;         // 8 to 16 bits per basis value, a scale per basis row
+  double quantization_budget = 0.01;  // what quantization may add to the Eq. 16 error, relative
+  bool quiet = true;                  // no progress lines on stderr
   // Told (phase, fraction of it done in [0, 1]) at the start and end of each phase and about
   // every 0.1 s in between, on the thread that called compress(), e.g. ("compress: iteration 2,
   // assigning", 0.4). An exception it throws ends compress() and propagates: throw Interrupted

@@ -65,8 +65,7 @@ CandidateLists nearest_subspace_candidates(const WorkingRows& rows, const Cluste
     std::vector<std::pair<float, std::int32_t>> scored;
     Eigen::MatrixXf projections;
     const bool dense = !options.pool;
-    if (dense)
-      projections = rows.values.middleRows(begin, end - begin) * q_all;  // rows x (K t)
+    if (dense) projections = rows.values.middleRows(begin, end - begin) * q_all;  // rows x (K t)
     for (std::size_t r = begin; r < end; ++r) {
       const auto x = rows.values.row(r);
       scored.clear();

@@ -105,8 +105,7 @@ double fit_cluster_basis_l1(const WorkingRows& rows, const std::vector<std::uint
         b[j] = rhs[std::size_t(j) * lights + i];
       }
       solve_small_spd(g, b, terms);
-      for (int j = 0; j < terms; ++j)
-        basis[std::size_t(j) * lights + i] = static_cast<float>(b[j]);
+      for (int j = 0; j < terms; ++j) basis[std::size_t(j) * lights + i] = static_cast<float>(b[j]);
     }
   }
   std::copy(best.begin(), best.end(), basis);

@@ -89,12 +89,18 @@ float fit_function_l1(const float* basis, int terms, int lights, const float* ro
   const float epsilon = settings.epsilon * norm;
   const int iterations = settings.iterations;
   switch (terms) {
-    case 1: return fit_l1<1>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
-    case 2: return fit_l1<2>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
-    case 3: return fit_l1<3>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
-    case 4: return fit_l1<4>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
-    case 6: return fit_l1<6>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
-    case 8: return fit_l1<8>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
+    case 1:
+      return fit_l1<1>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
+    case 2:
+      return fit_l1<2>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
+    case 3:
+      return fit_l1<3>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
+    case 4:
+      return fit_l1<4>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
+    case 6:
+      return fit_l1<6>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
+    case 8:
+      return fit_l1<8>(basis, terms, lights, row, epsilon, iterations, weights, scratch);
     default:
       return fit_l1<Eigen::Dynamic>(basis, terms, lights, row, epsilon, iterations, weights,
                                     scratch);

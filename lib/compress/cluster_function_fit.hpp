@@ -12,9 +12,9 @@ namespace relume {
 inline constexpr int max_cluster_terms = 16;
 
 struct IrlsSettings {
-  int iterations = 5;       // reweighted solves after the least-squares start
-  float epsilon = 1e-4f;    // smallest |residual| in the weights 1 / max(|e|, epsilon), relative
-                            // to the function's L2 norm
+  int iterations = 5;     // reweighted solves after the least-squares start
+  float epsilon = 1e-4f;  // smallest |residual| in the weights 1 / max(|e|, epsilon), relative
+                          // to the function's L2 norm
 };
 
 // Working memory of one thread (m floats of residual and t x m weighted basis values).

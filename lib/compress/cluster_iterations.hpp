@@ -43,10 +43,10 @@ struct ClusteringOptions {
 };
 
 struct IterationRecord {
-  int iteration = 0;          // 0 = the first assignment after seeding
-  double objective = 0;       // sum over rows of the L1 residual (unit-norm rows)
-  std::size_t changed = 0;    // rows that changed cluster
-  int clusters = 0;           // after the size rules
+  int iteration = 0;        // 0 = the first assignment after seeding
+  double objective = 0;     // sum over rows of the L1 residual (unit-norm rows)
+  std::size_t changed = 0;  // rows that changed cluster
+  int clusters = 0;         // after the size rules
   SizeRuleChanges size_rules;
   double seconds = 0;
 };
@@ -72,7 +72,8 @@ ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& opti
 
 // Runs up to `iterations` iterations from `model` (bases and assignment set; weights are fitted
 // first when they do not cover every row). Then the exact refit, if asked for.
-void iterate_clusters(const WorkingRows& rows, ClusterModel& model, const ClusteringOptions& options,
-                      int iterations, ClusteringTrace& trace, const IterationHook& hook = {});
+void iterate_clusters(const WorkingRows& rows, ClusterModel& model,
+                      const ClusteringOptions& options, int iterations, ClusteringTrace& trace,
+                      const IterationHook& hook = {});
 
 }  // namespace relume

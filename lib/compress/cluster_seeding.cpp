@@ -40,8 +40,8 @@ std::vector<float> grow_subspace(const WorkingRows& sample_rows, std::size_t see
   const Eigen::VectorXf cosine = -(sample * sample.row(seed).transpose()).cwiseAbs();
   std::vector<float> basis =
       least_squares_subspace(sample_rows, smallest(cosine, std::size_t(2 * terms)), terms);
-  return least_squares_subspace(sample_rows, smallest(distance_to_subspace(sample, basis, terms), grow),
-                                terms);
+  return least_squares_subspace(sample_rows,
+                                smallest(distance_to_subspace(sample, basis, terms), grow), terms);
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include "compress/clustered_factorization.hpp"
 #include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
+#include "compress/storage_precision.hpp"
+#include "container/container.hpp"
 #include "core/progress.hpp"
 
 namespace relume {
@@ -49,15 +51,25 @@ CompressedField compress(const ReflectanceField& field, const CompressOptions& o
     assigner = make_opencl_assigner(options.device, clustering);
     clustering.assign = assigner->function();
   }
+  StoragePrecision storage;
+  storage.weights = options.weights_precision;
+  storage.residual = options.residual_precision;
+  storage.quantize_bases = options.quantize_bases;
+  storage.budget = options.quantization_budget;
+  storage.threads = options.threads;
+  const QuantizationBudget budget = storage.quantization_budget();  // checks it before the work
   const ProgressListenerScope listening(options.progress);
   CompressionStats stats;
   if (options.target_error > 0) {
-    ContainerOptions storage;
-    storage.weights = options.weights_precision;
-    storage.residual = options.residual_precision;
-    return compress_to_target_error(field, internal, options.target_error, storage, stats).field;
+    CompressedField stored =
+        compress_to_target_error(field, internal, options.target_error, storage.container_options(),
+                                 storage.quantizes() ? &budget : nullptr, stats)
+            .field;
+    return quantize_for_container(stored, storage.container_options());
   }
-  return compress_field(field, internal, stats);
+  CompressedField stored = compress_field(field, internal, stats);
+  store_with_precision(field, stored, storage);
+  return stored;
 }
 
 }  // namespace relume

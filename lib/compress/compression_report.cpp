@@ -82,23 +82,26 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
   const ReflectanceField& field = *run.field;
   const CompressedField& compressed = *run.compressed;
   const CompressionStats& stats = *run.stats;
-  const RelativeError all = relative_error(field, compressed, false, all_residual_entries, run.threads);
-  const RelativeError masked = relative_error(field, compressed, true, all_residual_entries, run.threads);
+  const RelativeError all =
+      relative_error(field, compressed, false, all_residual_entries, run.threads);
+  const RelativeError masked =
+      relative_error(field, compressed, true, all_residual_entries, run.threads);
   nlohmann::ordered_json by_prefix = nlohmann::ordered_json::object();
   for (const int cap : {0, 1, 3, 5, 10, 20}) {
     if (cap >= stats.residual_entries) break;
-    by_prefix[std::to_string(cap)] =
-        relative_error(field, compressed, true, cap, run.threads).mean;
+    by_prefix[std::to_string(cap)] = relative_error(field, compressed, true, cap, run.threads).mean;
   }
   by_prefix[std::to_string(stats.residual_entries)] = masked.mean;
-  const Psnr8 psnr = psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads);
+  const Psnr8 psnr =
+      psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads);
   const double error_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const std::uint64_t input_bytes = std::uint64_t(field.functions()) * field.lights() * 4;
   nlohmann::ordered_json sections = nlohmann::ordered_json::object();
   sections["preamble"] = run.layout.preamble_bytes;
-  for (const ContainerSection& section : run.layout.sections) sections[section.name] = section.bytes;
+  for (const ContainerSection& section : run.layout.sections)
+    sections[section.name] = section.bytes;
   nlohmann::ordered_json sparseness = nlohmann::ordered_json::array();
   for (std::size_t level = 0; level < stats.sparseness.size(); ++level)
     sparseness.push_back({{"threshold_relative_to_norm", sparseness_thresholds[level]},

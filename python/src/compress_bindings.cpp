@@ -54,6 +54,7 @@ void bind_compress(py::module_& module) {
          int irls_iterations, std::optional<int> min_cluster_size, int max_cluster_size,
          std::uint64_t seed, unsigned threads, const std::string& assign, const std::string& device,
          const std::string& weights_precision, const std::string& residual_precision,
+         const std::string& bases_precision, double quantization_budget,
          std::optional<double> target_error, bool quiet, py::object progress) {
         std::optional<ReflectanceField> from_arrays;
         if (!py::isinstance<ReflectanceField>(field))
@@ -89,6 +90,9 @@ void bind_compress(py::module_& module) {
         options.device = device;
         options.weights_precision = parse_value_precision(weights_precision);
         options.residual_precision = parse_value_precision(residual_precision);
+        options.quantize_bases =
+            one_of("bases_precision", bases_precision, "quantized", "float32") == "quantized";
+        options.quantization_budget = quantization_budget;
         if (target_error && !(*target_error > 0))
           throw Error("target_error must be a relative error > 0 (or None), got " +
                       std::to_string(*target_error));
@@ -123,8 +127,9 @@ void bind_compress(py::module_& module) {
       "threshold"_a = 0.0f, "solver"_a = "irls", "transform"_a = "identity", "multires"_a = 0,
       "refine"_a = 2, "iterations"_a = 4, "candidates"_a = 3, "irls_iterations"_a = 5,
       "min_cluster_size"_a = py::none(), "max_cluster_size"_a = 0, "seed"_a = 1, "threads"_a = 0,
-      "assign"_a = "opencl", "device"_a = "", "weights_precision"_a = "float32",
-      "residual_precision"_a = "float32", "target_error"_a = py::none(), "quiet"_a = true,
+      "assign"_a = "opencl", "device"_a = "", "weights_precision"_a = "quantized",
+      "residual_precision"_a = "quantized", "bases_precision"_a = "quantized",
+      "quantization_budget"_a = 0.01, "target_error"_a = py::none(), "quiet"_a = true,
       "progress"_a = py::none(),
       R"(Compress a reflectance field by clustered sparse residual factorization, as
 `relume compress` does (same options, same defaults, same result for the same seed; the
@@ -147,7 +152,9 @@ max_cluster_size (0: no limit): clusters merge or split to stay within them.
 seed: of the cluster seeding. threads: 0 = all cores.
 assign: where the reassignment fits run, "opencl" (device, a substring of "platform /
 device"; "" = RELUME_DEVICE, else the first GPU, else PoCL) or "cpu" (the C++ path).
-weights_precision, residual_precision: "float32" or "float16", how save() stores them.
+weights_precision, residual_precision: "quantized" (integers times the coarsest steps that
+add at most quantization_budget, relative, to the Eq. 16 error), "float32" or "float16";
+bases_precision: "quantized" (8 to 16 bits) or "float32". The result is what save() stores.
 target_error: choose terms, clusters and per-function residual lengths that reach this
 relative error (paper Eq. 16, masked functions) in the fewest bytes (clusters, terms and
 residual are then not used).

@@ -120,7 +120,18 @@ def test_save_and_open_round_trip(compressed, saved, tmp_path):
     assert info["clusters"] == compressed.clusters
 
 
-def test_half_precision_is_smaller_and_close(compressed, field, tmp_path):
+def test_default_storage_is_quantized_and_saved_as_such(compressed, tmp_path):
+    assert compressed.weights_precision == "quantized"
+    assert compressed.residual_precision == "quantized"
+    compressed.save(tmp_path / "q.relume", weights_precision="float16")
+    again = relume.open(tmp_path / "q.relume")
+    assert again.weights_precision == "quantized", "a quantized field keeps its integers"
+    np.testing.assert_array_equal(again.weights, compressed.weights)
+
+
+def test_half_precision_is_smaller_and_close(field, tmp_path):
+    compressed = relume.compress(field, **SMALL, weights_precision="float32",
+                                 residual_precision="float32", bases_precision="float32")
     path = tmp_path / "half.relume"
     compressed.save(path, weights_precision="float16", residual_precision="float16")
     half = relume.open(path)

@@ -1,0 +1,35 @@
+// The last step of compression, shared by `relume compress` and compress(): the field made into
+// what the container stores. Parts asked for as `quantized` become integers times steps within
+// the error budget (model/quantization.hpp: quantize_with_budget); float16 parts are rounded
+// through half (quantize_for_container). What it returns is what read_container gives back.
+#pragma once
+
+#include <optional>
+#include <relume/container.hpp>
+
+#include "model/quantization.hpp"
+
+namespace relume {
+
+struct StoragePrecision {
+  ValuePrecision weights = ValuePrecision::quantized;
+  ValuePrecision residual = ValuePrecision::quantized;
+  bool quantize_bases = true;
+  double budget = QuantizationBudget{}.relative_increase;  // of the Eq. 16 error
+  unsigned threads = 0;
+
+  bool quantizes() const {
+    return weights == ValuePrecision::quantized || residual == ValuePrecision::quantized ||
+           quantize_bases;
+  }
+  QuantizationBudget quantization_budget() const;
+  ContainerOptions container_options() const;  // the precisions, for the float parts
+};
+
+// `field`, compressed from `original`, as stored; the quantization chosen, if any. Throws Error
+// for a budget that is not a positive number.
+std::optional<QuantizationChoice> store_with_precision(const ReflectanceField& original,
+                                                       CompressedField& field,
+                                                       const StoragePrecision& precision);
+
+}  // namespace relume
