@@ -135,17 +135,22 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
       lay_out_field(field, {slice_rows_, tail_rows_, head_entries_}, lights_even_);
   head_ = layout.head;
   tail_ = layout.tail;
+  weight_bytes_ = layout.weights.bytes;
+  residual_value_bytes_ = layout.residual_values.bytes;
+  residual_scale_ = layout.residual_scale;
+  products_scale_ = (field.quantization.weight_step > 0 ? field.quantization.weight_step : 1.0f) /
+                    residual_scale_;
   stored_entries_ = layout.tail.offsets.back();
   nonzeros_ = field.residual.nonzeros();
   try {
     const cl::Context& cl_context = context.context();
     stored_function_ = upload(cl_context, layout.stored_function, device_bytes_);
     cluster_ = upload(cl_context, narrow_indices(layout.cluster, cluster_id_bytes_), device_bytes_);
-    weights_ = upload(cl_context, layout.weights, device_bytes_);
+    weights_ = upload(cl_context, layout.weights.data, device_bytes_);
     blocks_ = upload(cl_context, layout.blocks, device_bytes_);
     slice_offsets_ = upload(cl_context, layout.head.offsets, device_bytes_);
     tail_offsets_ = upload(cl_context, layout.tail.offsets, device_bytes_);
-    residual_values_ = upload(cl_context, layout.residual_values, device_bytes_);
+    residual_values_ = upload(cl_context, layout.residual_values.data, device_bytes_);
     residual_lights_ =
         upload(cl_context, narrow_indices(layout.residual_lights, light_id_bytes_), device_bytes_);
   } catch (const cl::Error& error) {
@@ -158,7 +163,8 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
       " -DTAIL_ROWS=" + std::to_string(tail_rows_) +
       " -DHEAD_ENTRIES=" + std::to_string(head_entries_) + "u" +
       " -DCLUSTER_T=" + index_type(cluster_id_bytes_) +
-      " -DLIGHT_T=" + index_type(light_id_bytes_) + " -DROW_VECTOR=" + std::to_string(row_vector_);
+      " -DLIGHT_T=" + index_type(light_id_bytes_) + " -DROW_VECTOR=" + std::to_string(row_vector_) +
+      " -DWEIGHT_T=" + layout.weights.type() + " -DRESIDUAL_T=" + layout.residual_values.type();
 }
 
 double OpenClRelighter::residual_padding() const {
@@ -170,7 +176,7 @@ std::uint64_t OpenClRelighter::residual_bytes(int residual_cap) const {
   const std::uint64_t slots =
       head_.slots_read(cap) +
       (reads_tail(residual_cap) ? tail_.slots_read(cap - head_entries_) : 0);
-  return slots * std::uint64_t(sizeof(float) + light_id_bytes_);
+  return slots * std::uint64_t(residual_value_bytes_ + light_id_bytes_);
 }
 
 bool OpenClRelighter::reads_tail(int residual_cap) const {
@@ -218,7 +224,8 @@ void OpenClRelighter::upload_lights(BatchProgram& program,
     const RowMatrixF basis_light = light_in_field_basis(shape_, *lights[b]);
     for (int i = 0; i < shape_.lights; ++i)
       for (int c = 0; c < channels; ++c)
-        packed[(std::size_t(i) * channels + c) * program.batch_pad + b] = basis_light(i, c);
+        packed[(std::size_t(i) * channels + c) * program.batch_pad + b] =
+            basis_light(i, c) * residual_scale_;
   }
   context_.queue().enqueueWriteBuffer(program.light, CL_FALSE, 0, packed.size() * sizeof(float),
                                       packed.data());
@@ -274,7 +281,7 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
   // Per row: its function index, its output per frame; with the basis also its cluster id and
   // weights. Shared by all rows: the group offsets, the light vectors and the products (cached).
   std::uint64_t per_row = sizeof(std::uint32_t) + std::uint64_t(program.batch) * sizeof(float);
-  if (with_basis) per_row += cluster_id_bytes_ + std::uint64_t(shape_.terms) * sizeof(float);
+  if (with_basis) per_row += cluster_id_bytes_ + std::uint64_t(shape_.terms) * weight_bytes_;
   timing.bytes = rows_ * per_row + residual_bytes(residual_cap) +
                  (head_.offsets.size() + (reads_tail(residual_cap) ? tail_.offsets.size() : 0)) *
                      sizeof(std::uint32_t) +
@@ -384,6 +391,8 @@ std::vector<float> OpenClRelighter::cluster_products(const LightRgb& light) {
     if (!products.empty())
       context_.queue().enqueueReadBuffer(program.products, CL_TRUE, 0,
                                          products.size() * sizeof(float), products.data());
+    // The device's products carry the layout's step factors (relight_layout.hpp): undo them.
+    for (float& v : products) v /= products_scale_ * residual_scale_;
     last_timing_.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return products;

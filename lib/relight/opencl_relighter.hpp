@@ -84,6 +84,9 @@ class OpenClRelighter {
   int row_vector() const { return row_vector_; }
   // Residual entries per row in the slices (the rest in row-vector groups); unlimited off CPUs.
   std::uint32_t head_entries() const { return head_entries_; }
+  // Bytes per weight and per residual value on the device: 4 (float), 2 (int16) or 1 (int8).
+  int weight_bytes() const { return weight_bytes_; }
+  int residual_value_bytes() const { return residual_value_bytes_; }
   // Field data held on the device, in bytes.
   std::uint64_t device_bytes() const { return device_bytes_; }
   // Entries of the longest residual row, and the share of stored residual slots that are zero
@@ -131,6 +134,10 @@ class OpenClRelighter {
   int lights_even_ = 0;
   int cluster_id_bytes_ = 4;
   int light_id_bytes_ = 4;
+  int weight_bytes_ = 4;          // W as the device holds it: float, int16 or int8
+  int residual_value_bytes_ = 4;  // likewise the residual values
+  float residual_scale_ = 1;      // the light vector's factor on upload (relight_layout.hpp)
+  float products_scale_ = 1;      // the blocks' factor: weight step / residual_scale_
   std::string base_options_;
   std::size_t work_group_rows_ = 0;
   int row_vector_ = 1;
