@@ -153,6 +153,22 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
     residual_values_ = upload(cl_context, layout.residual_values.data, device_bytes_);
     residual_lights_ =
         upload(cl_context, narrow_indices(layout.residual_lights, light_id_bytes_), device_bytes_);
+    // Dark pixels as runs of consecutive pixels, each at most dark_run_pixels long so that the
+    // work-items' loops stay short.
+    constexpr std::uint32_t dark_run_pixels = 256;
+    std::vector<std::uint32_t> runs;
+    for (std::size_t d = 0; d < field.dark_pixels.size(); ++d) {
+      const std::uint32_t q = field.dark_pixels[d];
+      if (!runs.empty() && runs[runs.size() - 2] + runs.back() == q &&
+          runs.back() < dark_run_pixels)
+        ++runs.back();
+      else
+        runs.insert(runs.end(), {q, 1u});
+    }
+    dark_run_count_ = runs.size() / 2;
+    dark_pixel_count_ = field.dark_pixels.size();
+    dark_ = field.dark;
+    dark_runs_ = upload(cl_context, runs, device_bytes_);
   } catch (const cl::Error& error) {
     rethrow_opencl(error, context,
                    "uploading a compressed field of " + std::to_string(device_bytes_) + "+ bytes");
@@ -194,7 +210,10 @@ OpenClRelighter::BatchProgram& OpenClRelighter::batch_program(int batch) {
   if (shape_.terms > 0) program.gemv = context_.kernel("relight.cl", "cluster_products", options);
   program.relight_rows = context_.kernel("relight.cl", "relight_rows", options);
   program.residual_rows = context_.kernel("relight.cl", "residual_rows", options);
+  program.dark_pixels = context_.kernel("relight.cl", "dark_pixels", options);
   const cl::Context& cl_context = context_.context();
+  program.dark = cl::Buffer(cl_context, CL_MEM_READ_ONLY,
+                            std::size_t(shape_.channels) * program.batch_pad * sizeof(float));
   program.light = cl::Buffer(cl_context, CL_MEM_READ_ONLY, light_buffer_bytes(program));
   // A field without basis terms (residual only) still needs a valid buffer to bind.
   program.products = cl::Buffer(cl_context, CL_MEM_READ_WRITE,
@@ -216,7 +235,7 @@ std::uint64_t OpenClRelighter::products_bytes(const BatchProgram& program) const
 }
 
 void OpenClRelighter::upload_lights(BatchProgram& program,
-                                    const std::vector<const LightRgb*>& lights) {
+                                    const std::vector<const LightRgb*>& lights, Pass pass) {
   const int channels = shape_.channels;
   std::vector<float>& packed = program.staging;  // read by the write below until run_pass ends
   packed.assign(std::size_t(lights_even_) * channels * program.batch_pad, 0.0f);
@@ -229,6 +248,38 @@ void OpenClRelighter::upload_lights(BatchProgram& program,
   }
   context_.queue().enqueueWriteBuffer(program.light, CL_FALSE, 0, packed.size() * sizeof(float),
                                       packed.data());
+  if (dark_pixel_count_ == 0) return;
+  // Each frame's dark-model value per channel, dark[c] . I, computed here (lights x channels);
+  // zero for the residual term alone (the dark model is not residual).
+  std::vector<float>& dark = program.dark_staging;
+  dark.assign(std::size_t(channels) * program.batch_pad, 0.0f);
+  for (std::size_t b = 0; pass == Pass::relight && b < lights.size(); ++b) {
+    const RowMatrixF basis_light = light_in_field_basis(shape_, *lights[b]);
+    for (int c = 0; c < channels; ++c) {
+      double sum = 0;
+      for (int i = 0; i < shape_.lights; ++i)
+        sum += double(dark_[std::size_t(c) * shape_.lights + i]) * basis_light(i, c);
+      dark[std::size_t(c) * program.batch_pad + b] = float(sum);
+    }
+  }
+  context_.queue().enqueueWriteBuffer(program.dark, CL_FALSE, 0, dark.size() * sizeof(float),
+                                      dark.data());
+}
+
+OpenClRelighter::Launch OpenClRelighter::launch_dark(BatchProgram& program) {
+  cl::Kernel& kernel = program.dark_pixels;
+  kernel.setArg(0, cl_uint(dark_run_count_));
+  kernel.setArg(1, cl_uint(frame_stride_));
+  kernel.setArg(2, dark_runs_);
+  kernel.setArg(3, program.dark);
+  kernel.setArg(4, program.output);
+  cl::Event event;
+  context_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dark_run_count_),
+                                        cl::NullRange, nullptr, &event);
+  KernelTiming timing{"dark", 0, 0};
+  timing.bytes = dark_run_count_ * 8 + std::uint64_t(shape_.channels) * program.batch_pad * 4 +
+                 dark_pixel_count_ * shape_.channels * std::uint64_t(program.batch) * sizeof(float);
+  return {timing, event};
 }
 
 OpenClRelighter::Launch OpenClRelighter::launch_gemv(BatchProgram& program) {
@@ -295,12 +346,13 @@ void OpenClRelighter::run_pass(const std::vector<const LightRgb*>& lights, int r
   // Everything is enqueued without waiting (the queue is in order) and finished once at the end;
   // on failure the queue is drained before the error leaves, so nothing writes into `images` later.
   try {
-    upload_lights(program, lights);
+    upload_lights(program, lights, pass);
     std::vector<Launch> launches;
     const bool has_basis = shape_.terms > 0 && shape_.clusters > 0;
     if (has_basis && pass != Pass::residual) launches.push_back(launch_gemv(program));
     if (pass != Pass::products && rows_ > 0)
       launches.push_back(launch_rows(program, pass, residual_cap));
+    if (pass != Pass::products && dark_run_count_ > 0) launches.push_back(launch_dark(program));
     const std::size_t functions = std::size_t(shape_.functions());
     for (std::size_t b = 0; pass != Pass::products && b < lights.size(); ++b) {
       Image& image = images[b];

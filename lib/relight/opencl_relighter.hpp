@@ -105,10 +105,13 @@ class OpenClRelighter {
     cl::Kernel gemv;
     cl::Kernel relight_rows;
     cl::Kernel residual_rows;
-    cl::Buffer light;            // lights_even * channels * batch_pad
-    cl::Buffer products;         // clusters * terms * channels * batch_pad
-    cl::Buffer output;           // batch * frame_stride_, zero where no row is stored
-    std::vector<float> staging;  // host copy of `light` while it is being written
+    cl::Kernel dark_pixels;
+    cl::Buffer light;  // lights_even * channels * batch_pad
+    cl::Buffer dark;   // channels * batch_pad: each frame's dark-model value per channel
+    std::vector<float> dark_staging;  // host copy of `dark` while it is being written
+    cl::Buffer products;              // clusters * terms * channels * batch_pad
+    cl::Buffer output;                // batch * frame_stride_, zero where no row is stored
+    std::vector<float> staging;       // host copy of `light` while it is being written
   };
   struct Launch {
     KernelTiming timing;  // seconds filled in once the launch has finished
@@ -117,9 +120,10 @@ class OpenClRelighter {
   enum class Pass { relight, residual, products };
 
   BatchProgram& batch_program(int batch);
-  void upload_lights(BatchProgram& program, const std::vector<const LightRgb*>& lights);
+  void upload_lights(BatchProgram& program, const std::vector<const LightRgb*>& lights, Pass pass);
   Launch launch_gemv(BatchProgram& program);
   Launch launch_rows(BatchProgram& program, Pass pass, int residual_cap);
+  Launch launch_dark(BatchProgram& program);
   // Relights lights into images[first, first + lights.size()).
   void run_pass(const std::vector<const LightRgb*>& lights, int residual_cap, Pass pass,
                 Image* images);
@@ -154,6 +158,10 @@ class OpenClRelighter {
   cl::Buffer tail_offsets_;
   cl::Buffer residual_values_;
   cl::Buffer residual_lights_;
+  cl::Buffer dark_runs_;  // (first pixel, pixels) of each run of dark pixels
+  std::size_t dark_run_count_ = 0;
+  std::uint64_t dark_pixel_count_ = 0;
+  std::vector<float> dark_;     // the field's dark model, channels x lights
   ResidualRegion head_, tail_;  // the residual's layout (their offsets are uploaded too)
   int widest_row_ = 0;
   std::uint64_t stored_entries_ = 0;  // residual slots on the device, padding included
