@@ -1,7 +1,7 @@
-// `relume relight`: renders one relit image of a reflectance field under a light vector file or
-// an environment map. A .relume container is relit with OpenCL (or the C++ reference with --cpu);
-// an uncompressed field (folder or .lp) by the double-precision reference, the ground truth the
-// compressed paths are tested against.
+// `relume relight`: renders one relit image of a reflectance field under a light vector file, an
+// environment map or a moved light. A .relume container is relit with OpenCL (or the C++ reference
+// with --cpu); an uncompressed field (folder or .lp) by the double-precision reference, the ground
+// truth the compressed paths are tested against.
 #include <filesystem>
 #include <relume/field.hpp>
 #include <relume/image.hpp>
@@ -56,7 +56,10 @@ const CommandRegistration registration{
     30, [](CLI::App& app) {
       auto options = std::make_shared<RelightOptions>();
       auto* command = app.add_subcommand(
-          "relight", "Relight a reflectance field under an environment map or a light vector file");
+          "relight",
+          "Relight a reflectance field under an environment map, a light vector file or a light\n"
+          "moved to any direction between the captured ones.\n"
+          "Example: relume relight scene.relume --light-dir 0.6,0.4,0.7 --spread 5 -o raking.png");
       command
           ->add_option(
               "input", options->input,

@@ -1,6 +1,7 @@
-// `relume relight-sequence`: an animated relighting of a .relume container, either one map rotated
-// by a fixed step per frame or one map per frame from a list. Frames are relit B at a time in one
-// pass over W and the residual, written as numbered images, and the run reports frames/s, the
+// `relume relight-sequence`: an animated relighting of a .relume container: one map rotated by a
+// fixed step per frame, one map per frame from a list, a moved light circling the object
+// (--light-orbit) or following a file of directions (--light-path). Frames are relit B at a time in
+// one pass over W and the residual, written as numbered images, and the run reports frames/s, the
 // kernels' GB/s and, with --compare, each frame's error against the full-residual render.
 #include <chrono>
 #include <cstdio>
@@ -8,6 +9,8 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numbers>
+#include <optional>
 #include <relume/error.hpp>
 #include <relume/image.hpp>
 #include <relume/lighting.hpp>
@@ -16,6 +19,8 @@
 #include "container/container.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
+#include "directional_light_options.hpp"
+#include "field/light_file.hpp"
 #include "image/image_difference.hpp"
 #include "json_report.hpp"
 #include "lighting/environment_map.hpp"
@@ -31,6 +36,9 @@ struct SequenceOptions {
   std::string environment;
   std::string environment_list;
   std::string layout = "auto";
+  std::optional<double> orbit_elevation;
+  std::string light_path;
+  DirectionalLightOptions moved_light;
   int frames = 36;
   double rotate_start = 0;
   double rotate_step = 10;
@@ -77,8 +85,49 @@ std::vector<std::string> read_map_list(const std::string& list) {
   return maps;
 }
 
+// The direction of a light `elevation` degrees above the object's plane (x-y, facing the camera)
+// at `azimuth` degrees from +x towards +y: counter-clockwise as the camera sees it.
+Eigen::Vector3d orbit_direction(double elevation, double azimuth) {
+  const double e = elevation * std::numbers::pi / 180, a = azimuth * std::numbers::pi / 180;
+  return {std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
+}
+
+// The light vectors of a moved light along an orbit or a path of directions.
+std::vector<LightRgb> moved_light_frames(const SequenceOptions& options,
+                                         const CompressedField& field) {
+  std::vector<Eigen::Vector3d> path;
+  if (!options.light_path.empty()) {
+    const LightDirections rows = read_direction_rows(options.light_path);
+    for (Eigen::Index i = 0; i < rows.rows(); ++i)
+      path.push_back(rows.row(i).transpose().cast<double>());
+    if (path.empty()) throw Error("light path " + options.light_path + " names no directions");
+  } else {
+    for (int frame = 0; frame < options.frames; ++frame)
+      path.push_back(orbit_direction(*options.orbit_elevation,
+                                     options.rotate_start + frame * options.rotate_step));
+  }
+  const LightInterpolation interpolation(field.directions);
+  int outside = 0;
+  std::vector<LightRgb> lights;
+  const Eigen::Vector3d color(options.moved_light.color.data());
+  for (const auto& direction : path) {
+    outside += !interpolation.covers(direction);
+    lights.push_back(
+        interpolation.light_vector({direction, color, options.moved_light.spread_degrees}));
+  }
+  if (outside > 0)
+    note(
+        "%d of %zu frames light the object from outside the captured lights' cover: lit from "
+        "the nearest point of its rim",
+        outside, path.size());
+  return lights;
+}
+
 // The light vector of every frame.
 std::vector<LightRgb> frame_lights(const SequenceOptions& options, const CompressedField& field) {
+  if (options.frames < 1) throw Error("--frames must be at least 1");
+  if (options.orbit_elevation || !options.light_path.empty())
+    return moved_light_frames(options, field);
   const auto layout = parse_layout_option(options.layout);
   std::vector<LightRgb> lights;
   if (!options.environment_list.empty()) {
@@ -88,7 +137,6 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
                            .rgb);
     return lights;
   }
-  if (options.frames < 1) throw Error("--frames must be at least 1");
   const LightVectorIntegrator integrator(load_environment_map(options.environment, layout),
                                          field.directions);
   for (int frame = 0; frame < options.frames; ++frame)
@@ -162,10 +210,12 @@ void run_sequence(const SequenceOptions& options) {
 const CommandRegistration registration{
     35, [](CLI::App& app) {
       auto options = std::make_shared<SequenceOptions>();
-      auto* command = app.add_subcommand("relight-sequence",
-                                         "Relight a .relume container under a rotating environment "
-                                         "or a list of maps, one image per "
-                                         "frame");
+      auto* command = app.add_subcommand(
+          "relight-sequence",
+          "Relight a .relume container under a rotating environment, a list of maps, or a light\n"
+          "moved along an orbit or a path, one image per frame.\n"
+          "Example: relume relight-sequence scene.relume --light-orbit 20 --frames 72 "
+          "--rotate-step 5 -o orbit/%04d.png");
       command->add_option("input", options->input, "The .relume container")->required();
       auto* env =
           command->add_option("--env", options->environment,
@@ -173,13 +223,27 @@ const CommandRegistration registration{
       auto* list = command->add_option("--env-list", options->environment_list,
                                        "Text file naming one environment map per frame (paths "
                                        "relative to the list's folder)");
-      env->excludes(list);
-      list->excludes(env);
+      auto* orbit = command->add_option(
+          "--light-orbit", options->orbit_elevation,
+          "A moved light circling the object at this elevation in degrees above the object's "
+          "plane (low = raking light), starting at azimuth --rotate (degrees from +x towards +y) "
+          "and turning --rotate-step per frame, for --frames frames");
+      auto* path = command->add_option("--light-path", options->light_path,
+                                       "A moved light following a file of directions, one "
+                                       "'x y z' row per frame");
+      const std::vector<CLI::Option*> sources = {env, list, orbit, path};
+      for (CLI::Option* source : sources)
+        for (CLI::Option* other : sources)
+          if (other != source) source->excludes(other);
+      add_light_color_options(*command, options->moved_light);
       command->add_option("--layout", options->layout, "Map layout: auto, latlong, angular, cross")
           ->capture_default_str();
-      command->add_option("--frames", options->frames, "Frames to render with --env")
+      command
+          ->add_option("--frames", options->frames, "Frames to render with --env or --light-orbit")
           ->capture_default_str();
-      command->add_option("--rotate", options->rotate_start, "Rotation of the first frame, degrees")
+      command
+          ->add_option("--rotate", options->rotate_start,
+                       "Rotation of the first frame (the map's, or the orbit's azimuth), degrees")
           ->capture_default_str();
       command
           ->add_option("--rotate-step", options->rotate_step, "Rotation added per frame, degrees")
@@ -199,8 +263,11 @@ const CommandRegistration registration{
       command->add_option("--report", options->report, "Write a JSON report of the run");
       add_renderer_options(*command, options->renderer);
       command->callback([options] {
-        if (options->environment.empty() && options->environment_list.empty())
-          throw Error("give --env MAP (rotating) or --env-list FILE");
+        if (options->environment.empty() && options->environment_list.empty() &&
+            !options->orbit_elevation && options->light_path.empty())
+          throw Error(
+              "give --env MAP (rotating), --env-list FILE, --light-orbit ELEVATION or "
+              "--light-path FILE");
         run_sequence(*options);
       });
     }};
