@@ -1,12 +1,14 @@
 // `relume compare IMAGE REFERENCE`: how far a relit image is from a reference (for example a
 // compressed field relit against the uncompressed one): relative squared error, relative L2
-// error, the largest absolute difference and where it is, and the count of negative values.
+// error, the largest absolute difference and where it is, and the count of negative values;
+// with --mask, inside the mask only.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <relume/image.hpp>
 
 #include "command_registry.hpp"
+#include "field/mask_file.hpp"
 #include "image/image_difference.hpp"
 #include "json_report.hpp"
 
@@ -14,12 +16,16 @@ namespace relume {
 namespace {
 
 struct CompareOptions {
-  std::string image, reference, json;
+  std::string image, reference, json, mask;
 };
 
 void run_compare(const CompareOptions& options) {
-  const ImageDifference d = image_difference(
-      read_image(options.image), read_image(options.reference), options.image, options.reference);
+  const Image image = read_image(options.image);
+  const std::vector<std::uint8_t> mask = options.mask.empty()
+                                             ? std::vector<std::uint8_t>{}
+                                             : read_mask(options.mask, image.width, image.height);
+  const ImageDifference d = image_difference(image, read_image(options.reference), options.image,
+                                             options.reference, mask);
   std::printf(
       "%s against %s: relative squared error %.6g (relative L2 %.6g), largest |difference| "
       "%.6g at pixel (%d, %d) channel %d, %zu of %zu values negative\n",
@@ -35,7 +41,9 @@ void run_compare(const CompareOptions& options) {
       {"max_abs_difference", d.max_abs_difference},
       {"max_at", {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}}},
       {"negative_values", d.negative_values},
-      {"values", d.values}};
+      {"values", d.values},
+      {"mask",
+       options.mask.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(options.mask)}};
   write_json_report(options.json, report);
 }
 
@@ -50,6 +58,9 @@ const CommandRegistration registration{
       command->add_option("image", options->image, "The image to judge")->required();
       command->add_option("reference", options->reference, "The reference image")->required();
       command->add_option("--json", options->json, "Also write the figures to this JSON file");
+      command->add_option("--mask", options->mask,
+                          "Compare only the pixels inside this mask (an image of the same size, "
+                          "non-zero = inside; a field's mask.png)");
       command->callback([options] { run_compare(*options); });
     }};
 

@@ -23,6 +23,7 @@
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "field_input_options.hpp"
 #include "json_report.hpp"
 #include "model/reconstruct_field.hpp"
 
@@ -45,15 +46,18 @@ struct CompressArguments {
   double target_error = 0;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
+  FieldInputOptions field_input;
   CompressionOptions options;
 };
 
 // The settings that shape the clustering, with the input: a checkpoint is only resumed when its
 // fingerprint is the same.
-std::string fingerprint(const std::string& input, const CompressionOptions& options) {
+std::string fingerprint(const std::string& input, const FieldInputOptions& field_input,
+                        const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;
   return nlohmann::json{
       {"input", fs::absolute(input).lexically_normal().string()},
+      {"field_input", describe_field_input(field_input)},
       {"clusters", clustering.clusters},
       {"terms", clustering.terms},
       {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
@@ -73,15 +77,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressionOptions options = base_options;
   if (opencl) options.clustering.assign = opencl->function();
 
-  FieldLoadOptions load;
-  load.threads = options.clustering.threads;
-  const ReflectanceField field = load_field(input, load);
+  const ReflectanceField field =
+      load_field(input, field_load_options(arguments.field_input, options.clustering.threads));
   const double load_seconds = seconds_since(start);
   note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
        field.height, field.channels, field.lights(), load_seconds);
 
   const fs::path checkpoint = output.string() + ".checkpoint";
-  const std::string print = fingerprint(input, options);
+  const std::string print = fingerprint(input, arguments.field_input, options);
   std::optional<ClusteringResume> resume;
   if (arguments.resume && fs::exists(checkpoint)) {
     resume = read_checkpoint(checkpoint, print);
@@ -303,6 +306,7 @@ const CommandRegistration registration{
           "relative error (paper Eq. 16, masked functions) with the fewest bytes");
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");
+      add_field_input_options(*command, arguments->field_input);
       command->callback([arguments] { run_compress(*arguments); });
     }};
 

@@ -48,6 +48,10 @@ struct ReflectanceField {
 struct FieldLoadOptions {
   ImageReadOptions image;
   unsigned threads = 0;  // 0 = all cores
+  // The object mask: the folder's mask.png, or this image instead (for any input, .lp captures
+  // too; non-zero = inside). With use_mask false every pixel is inside and nothing is read.
+  std::filesystem::path mask_file;
+  bool use_mask = true;
 };
 
 // `path` is a field folder or an .lp file. Throws Error naming the file, line or pixel at fault.

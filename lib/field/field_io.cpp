@@ -9,6 +9,7 @@
 #include "core/atomic_file.hpp"
 #include "core/parallel.hpp"
 #include "field/light_file.hpp"
+#include "field/mask_file.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -132,28 +133,14 @@ void check_finite(const Image& image, const fs::path& path) {
   }
 }
 
-std::vector<std::uint8_t> load_mask(const fs::path& path, int width, int height) {
-  const Image image = read_image(path);
-  if (image.width != width || image.height != height)
-    throw Error("mask " + path.string() + " is " + std::to_string(image.width) + "x" +
-                std::to_string(image.height) + " but the images are " + std::to_string(width) +
-                "x" + std::to_string(height));
-  std::vector<std::uint8_t> mask(std::size_t(width) * height);
-  for (std::size_t p = 0; p < mask.size(); ++p) {
-    float any = 0;
-    for (int c = 0; c < image.channels; ++c)
-      any = std::max(any, image.pixels[p * image.channels + c]);
-    mask[p] = any > 0 ? 1 : 0;
-  }
-  return mask;
-}
-
 }  // namespace
 
 ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& options) {
   if (!fs::exists(path)) throw Error("reflectance field not found: " + path.string());
   const FieldSource source = fs::is_directory(path) ? describe_folder(path) : describe_lp(path);
   check_counts(source, path);
+  if (options.use_mask && !options.mask_file.empty() && !fs::exists(options.mask_file))
+    throw Error("mask not found: " + options.mask_file.string());
 
   const Image first = read_image(source.images.front(), options.image);
   ReflectanceField field;
@@ -184,8 +171,9 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
         field.values(p * field.channels + c, i) = image.pixels[p * image.channels + c] * scale[c];
   });
 
-  field.mask = source.mask.empty() ? std::vector<std::uint8_t>(field.pixels(), 1)
-                                   : load_mask(source.mask, field.width, field.height);
+  const fs::path mask = options.mask_file.empty() ? source.mask : options.mask_file;
+  field.mask = mask.empty() || !options.use_mask ? std::vector<std::uint8_t>(field.pixels(), 1)
+                                                 : read_mask(mask, field.width, field.height);
   return field;
 }
 
