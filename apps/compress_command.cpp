@@ -69,6 +69,30 @@ std::string fingerprint(const std::string& input, const FieldInputOptions& field
       .dump();
 }
 
+// One line for users, leading with the error over what is stored (paper Eq. 16 over the
+// functions inside the mask); with a mask, the whole frame's error follows, in which every
+// background function, not stored, counts as entirely lost.
+std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
+  char error[200];
+  const auto outside = report["field"]["outside_mask"].get<std::int64_t>();
+  if (outside == 0)
+    std::snprintf(error, sizeof error, "error %.5f", report["error_masked"].get<double>());
+  else
+    std::snprintf(error, sizeof error,
+                  "error %.5f over the stored object (whole frame %.5f: %lld background "
+                  "functions not stored)",
+                  report["error_masked"].get<double>(), report["error_all"].get<double>(),
+                  static_cast<long long>(outside));
+  char line[1024];
+  std::snprintf(line, sizeof line,
+                "compressed %s -> %s: %llu bytes (%.4f of float32), %s, %d clusters, %.1f s",
+                report["input"].get<std::string>().c_str(),
+                report["output"].get<std::string>().c_str(),
+                static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
+                report["ratio"].get<double>(), error, clusters, report["seconds"].get<double>());
+  return line;
+}
+
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -148,12 +172,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
          relative_error(field, compressed, true, all_residual_entries, run.threads).mean},
         {"quantization_error",
          relative_error(compressed, stored, all_residual_entries, run.threads).mean}};
-  say("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
-      "%d clusters, %.1f s",
-      input.c_str(), output.c_str(),
-      static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-      report["ratio"].get<double>(), report["error_all"].get<double>(),
-      report["error_masked"].get<double>(), stats.clusters, run.total_seconds);
+  say("%s", summary_line(report, stats.clusters).c_str());
   for (const auto& [phase, seconds] : report["phases_seconds"].items())
     detail("compress: %-22s %8.2f s", phase.c_str(), seconds.get<double>());
   return report;

@@ -1,7 +1,8 @@
 // Tests of how the commands read an uncompressed field, run as commands on a small synthetic
 // scene: masks mean the same everywhere (relight of a folder applies its mask.png, --no-mask keeps
 // the background, --mask FILE works for folders and .lp captures in compress and relight,
-// compare --mask compares inside only).
+// compare --mask compares inside only), and compress's summary line leads with the error over
+// what is stored.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -128,6 +129,41 @@ TEST_F(FieldInputCommands, CompressAndRelightTakeAMaskForAnLpCapture) {
                                            path("none.png") + "' -o '" + path("none.relume") + "'");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_NE(missing.output.find("none.png"), std::string::npos) << missing.output;
+}
+
+// The %.5f the summary line prints for a report value.
+std::string five_digits(const nlohmann::json& value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.5f", value.get<double>());
+  return text;
+}
+
+TEST_F(FieldInputCommands, CompressSummaryLeadsWithTheErrorOverWhatIsStored) {
+  const auto masked =
+      run_or_fail("compress '" + path("scene") + "' --mask '" + path("left.png") + "' -o '" +
+                  path("summary.relume") + "' --clusters 3 --terms 2 --residual 4 --report '" +
+                  path("summary.json") + "'");
+  const nlohmann::json report = read_json("summary.json");
+  ASSERT_GT(report["error_all"].get<double>(), 0.3) << "the unstored half counts as lost";
+  EXPECT_LT(report["error_masked"].get<double>(), 0.1);
+  EXPECT_NE(masked.output.find("bytes ("), std::string::npos) << masked.output;
+  const std::string lead =
+      "error " + five_digits(report["error_masked"]) + " over the stored object";
+  EXPECT_NE(masked.output.find(lead), std::string::npos) << masked.output;
+  EXPECT_NE(masked.output.find("whole frame " + five_digits(report["error_all"])),
+            std::string::npos)
+      << masked.output;
+  EXPECT_LT(masked.output.find(lead), masked.output.find("whole frame")) << masked.output;
+
+  // Without a mask there is one error, over everything.
+  const auto unmasked = run_or_fail(
+      "compress '" + path("scene") + "' -o '" + path("summary-all.relume") +
+      "' --clusters 3 --terms 2 --residual 4 --report '" + path("summary-all.json") + "'");
+  const nlohmann::json all = read_json("summary-all.json");
+  EXPECT_NE(unmasked.output.find("error " + five_digits(all["error_masked"]) + ","),
+            std::string::npos)
+      << unmasked.output;
+  EXPECT_EQ(unmasked.output.find("whole frame"), std::string::npos) << unmasked.output;
 }
 
 TEST_F(FieldInputCommands, CompareWithAMaskComparesInsideOnly) {
