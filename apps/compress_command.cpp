@@ -101,8 +101,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressionOptions options = base_options;
   if (opencl) options.clustering.assign = opencl->function();
 
-  const ReflectanceField field =
-      load_field(input, field_load_options(arguments.field_input, options.clustering.threads));
+  const ReflectanceField field = load_field(
+      input, field_load_options(input, arguments.field_input, options.clustering.threads));
   const double load_seconds = seconds_since(start);
   note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
        field.height, field.channels, field.lights(), load_seconds);

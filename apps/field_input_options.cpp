@@ -1,6 +1,11 @@
 // Implementation of the shared field input options.
 #include "field_input_options.hpp"
 
+#include <relume/error.hpp>
+
+#include "core/console.hpp"
+#include "field/input_encoding.hpp"
+
 namespace relume {
 
 void add_field_input_options(CLI::App& command, FieldInputOptions& options) {
@@ -14,16 +19,51 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options) {
       "Ignore the folder's mask.png: every pixel is inside (the background is kept)");
   mask->excludes(no_mask);
   no_mask->excludes(mask);
+  auto* encoding = command
+                       .add_option("--input-encoding", options.input_encoding,
+                                   "How 8-bit input images are decoded: auto (float and 16-bit "
+                                   "images and DiLiGenT folders linear; other 8-bit JPEG/PNG "
+                                   "sRGB unless they declare linear), linear or srgb")
+                       ->capture_default_str();
+  auto* linear = command.add_flag("--linear", options.linear,
+                                  "Short for --input-encoding linear (8-bit values are linear)");
+  auto* srgb = command.add_flag("--srgb", options.srgb,
+                                "Short for --input-encoding srgb (8-bit values are sRGB-encoded)");
+  linear->excludes(srgb)->excludes(encoding);
+  srgb->excludes(linear)->excludes(encoding);
+  encoding->excludes(linear)->excludes(srgb);
 }
+
+namespace {
+
+EightBitEncoding requested_encoding(const FieldInputOptions& options) {
+  if (options.linear) return EightBitEncoding::linear;
+  if (options.srgb) return EightBitEncoding::srgb;
+  if (options.input_encoding == "auto") return EightBitEncoding::automatic;
+  if (options.input_encoding == "linear") return EightBitEncoding::linear;
+  if (options.input_encoding == "srgb") return EightBitEncoding::srgb;
+  throw Error("--input-encoding must be auto, linear or srgb, got '" + options.input_encoding +
+              "'");
+}
+
+}  // namespace
 
 std::string describe_field_input(const FieldInputOptions& options) {
-  return "mask " + (options.no_mask             ? std::string("none")
-                    : options.mask_file.empty() ? std::string("the folder's")
-                                                : options.mask_file);
+  const std::string mask = options.no_mask             ? "none"
+                           : options.mask_file.empty() ? "the folder's"
+                                                       : options.mask_file;
+  const std::string encoding = options.linear ? "linear"
+                               : options.srgb ? "srgb"
+                                              : options.input_encoding;
+  return "mask " + mask + ", encoding " + encoding;
 }
 
-FieldLoadOptions field_load_options(const FieldInputOptions& options, unsigned threads) {
+FieldLoadOptions field_load_options(const std::string& input, const FieldInputOptions& options,
+                                    unsigned threads) {
+  const InputEncodingDecision decision = decide_input_encoding(input, requested_encoding(options));
+  note("%s: input %s", input.c_str(), decision.reason.c_str());
   FieldLoadOptions load;
+  load.image.eight_bit = decision.encoding;
   load.threads = threads;
   load.mask_file = options.mask_file;
   load.use_mask = !options.no_mask;

@@ -1,6 +1,7 @@
 // The options that say how an uncompressed field is read, shared by `compress` and `relight`:
 // the object mask (`--mask FILE` for any input, replacing a folder's mask.png; `--no-mask` keeps
-// every pixel).
+// every pixel) and the encoding of 8-bit images (`--input-encoding auto|linear|srgb`, with
+// `--linear` and `--srgb` as short forms).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,14 +13,19 @@ namespace relume {
 struct FieldInputOptions {
   std::string mask_file;
   bool no_mask = false;
+  std::string input_encoding = "auto";
+  bool linear = false;
+  bool srgb = false;
 };
 
 void add_field_input_options(CLI::App& command, FieldInputOptions& options);
 
-// The options as one line ("mask the folder's"), for checkpoint fingerprints.
+// The options as one line ("mask folder, encoding auto"), for checkpoint fingerprints.
 std::string describe_field_input(const FieldInputOptions& options);
 
-// The load options these options ask for, with `threads` workers.
-FieldLoadOptions field_load_options(const FieldInputOptions& options, unsigned threads);
+// The load options for `input` with `threads` workers. Decides the input encoding (once, here)
+// and notes the decision with its reason. Throws Error for an unknown --input-encoding.
+FieldLoadOptions field_load_options(const std::string& input, const FieldInputOptions& options,
+                                    unsigned threads);
 
 }  // namespace relume

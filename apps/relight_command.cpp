@@ -28,7 +28,6 @@ struct RelightOptions {
   FieldInputOptions field_input;
   std::string output;
   double exposure = 0;
-  bool srgb_input = false;
   unsigned threads = 0;
 };
 
@@ -64,9 +63,8 @@ void run_relight(const RelightOptions& options) {
     relight_container(options);
     return;
   }
-  FieldLoadOptions load = field_load_options(options.field_input, options.threads);
-  if (options.srgb_input) load.image.eight_bit = EightBitEncoding::srgb;
-  const ReflectanceField field = load_field(options.input, load);
+  const ReflectanceField field = load_field(
+      options.input, field_load_options(options.input, options.field_input, options.threads));
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
   Image image = relight_field(field, lights, options.threads);
   black_outside(image, field.mask);
@@ -97,9 +95,6 @@ const CommandRegistration registration{
           ->required();
       command->add_option("--exposure", options->exposure,
                           "Exposure in stops applied to 8-bit outputs (default 0)");
-      command->add_flag(
-          "--srgb", options->srgb_input,
-          "Decode 8-bit input images of an uncompressed field as sRGB (default: linear)");
       command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
       command->callback([options] { run_relight(*options); });
     }};

@@ -46,7 +46,9 @@ struct ReflectanceField {
 };
 
 struct FieldLoadOptions {
-  ImageReadOptions image;
+  // 8-bit images: automatic decides once per field (float and 16-bit images and DiLiGenT
+  // folders linear, other 8-bit images sRGB unless they declare linear), or as asked.
+  ImageReadOptions image{EightBitEncoding::automatic};
   unsigned threads = 0;  // 0 = all cores
   // The object mask: the folder's mask.png, or this image instead (for any input, .lp captures
   // too; non-zero = inside). With use_mask false every pixel is inside and nothing is read.

@@ -3,7 +3,8 @@
 // An Image holds interleaved channels, rows top to bottom: the common currency of loaders,
 // environment maps, renderers and writers. Reading and writing go through OpenImageIO: integer
 // formats are read at their full depth (16-bit PNG as 16 bits) and normalised to [0, 1]; 8-bit
-// inputs are linear unless the caller asks for sRGB decoding. Float outputs (EXR, HDR, TIFF) are
+// inputs are linear unless the caller asks for sRGB decoding, or for the automatic choice (sRGB
+// unless the file declares a linear colour space). Float outputs (EXR, HDR, TIFF) are
 // written linear; 8-bit outputs (PNG, JPEG) are exposed by 2^exposure and sRGB-encoded. Every
 // written file carries relume's version as its Software attribute. All writes are atomic.
 #pragma once
@@ -30,7 +31,9 @@ struct Image {
   float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }
 };
 
-enum class EightBitEncoding { linear, srgb };
+// How 8-bit values are decoded. automatic: by read_image, sRGB unless the file declares a linear
+// colour space; by load_field, once per field (field/input_encoding.hpp's rule).
+enum class EightBitEncoding { linear, srgb, automatic };
 
 struct ImageReadOptions {
   EightBitEncoding eight_bit = EightBitEncoding::linear;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "image/image_encoding.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -32,7 +33,11 @@ Image read_image(const fs::path& path, const ImageReadOptions& options) {
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
     throw Error("cannot decode image " + path.string() + ": " + input->geterror());
   const bool eight_bit = spec.format.basetype == OIIO::TypeDesc::UINT8;
-  if (eight_bit && options.eight_bit == EightBitEncoding::srgb)
+  const bool srgb =
+      options.eight_bit == EightBitEncoding::srgb ||
+      (options.eight_bit == EightBitEncoding::automatic &&
+       !is_linear_color_space(spec.get_string_attribute("oiio:ColorSpace")));
+  if (eight_bit && srgb)
     for (float& v : image.pixels) v = srgb_to_linear(v);
   return image;
 }

@@ -2,7 +2,7 @@
 // scene: masks mean the same everywhere (relight of a folder applies its mask.png, --no-mask keeps
 // the background, --mask FILE works for folders and .lp captures in compress and relight,
 // compare --mask compares inside only), and compress's summary line leads with the error over
-// what is stored.
+// what is stored, and the input encoding is decided once and said.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -164,6 +164,43 @@ TEST_F(FieldInputCommands, CompressSummaryLeadsWithTheErrorOverWhatIsStored) {
             std::string::npos)
       << unmasked.output;
   EXPECT_EQ(unmasked.output.find("whole frame"), std::string::npos) << unmasked.output;
+}
+
+TEST_F(FieldInputCommands, TheInputEncodingIsDecidedOnceAndSaid) {
+  // The scene's images as 8-bit PNGs, without light_intensities.txt: sRGB by default.
+  fs::create_directories(path("png"));
+  std::ofstream names(path("png/filenames.txt"));
+  std::ifstream exr_names(path("scene/filenames.txt"));
+  for (std::string name; std::getline(exr_names, name);) {
+    const std::string png = fs::path(name).replace_extension(".png").string();
+    Image image = read_image(path("scene") + "/" + name);
+    for (float& v : image.pixels) v = std::min(v, 1.0f);
+    write_image(path("png/" + png), image);
+    names << png << '\n';
+  }
+  names.close();
+  fs::copy_file(path("scene/light_directions.txt"), path("png/light_directions.txt"));
+
+  const auto automatic = run_or_fail("relight '" + path("png") + "' --lights '" +
+                                     path("lights.txt") + "' -o '" + path("png-auto.exr") + "'");
+  const std::string said = "decoded as sRGB";
+  const auto at = automatic.output.find(said);
+  EXPECT_NE(at, std::string::npos) << automatic.output;
+  EXPECT_EQ(automatic.output.find(said, at + 1), std::string::npos) << "said once";
+  const auto linear = run_or_fail("relight '" + path("png") + "' --linear --lights '" +
+                                  path("lights.txt") + "' -o '" + path("png-linear.exr") + "'");
+  EXPECT_NE(linear.output.find("linear, as asked"), std::string::npos) << linear.output;
+  // sRGB decoding darkens mid-tones: the linear reading is brighter.
+  EXPECT_GT(energy_in_columns(read_image(path("png-linear.exr")), 0, width),
+            1.2 * energy_in_columns(read_image(path("png-auto.exr")), 0, width));
+  const auto quiet = run_or_fail("-q relight '" + path("png") + "' --lights '" +
+                                 path("lights.txt") + "' -o '" + path("png-quiet.exr") + "'");
+  EXPECT_EQ(quiet.output, "");
+  const auto bad =
+      testing::run_relume("relight '" + path("png") + "' --input-encoding gamma --lights '" +
+                          path("lights.txt") + "' -o '" + path("bad.exr") + "'");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("gamma"), std::string::npos) << bad.output;
 }
 
 TEST_F(FieldInputCommands, CompareWithAMaskComparesInsideOnly) {
