@@ -1,8 +1,6 @@
 // Implementation of the shared field input options.
 #include "field_input_options.hpp"
 
-#include <relume/error.hpp>
-
 #include "core/console.hpp"
 #include "field/input_encoding.hpp"
 
@@ -24,7 +22,8 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options) {
                                    "How 8-bit input images are decoded: auto (float and 16-bit "
                                    "images and DiLiGenT folders linear; other 8-bit JPEG/PNG "
                                    "sRGB unless they declare linear), linear or srgb")
-                       ->capture_default_str();
+                       ->capture_default_str()
+                       ->check(CLI::IsMember({"auto", "linear", "srgb"}));
   auto* linear = command.add_flag("--linear", options.linear,
                                   "Short for --input-encoding linear (8-bit values are linear)");
   auto* srgb = command.add_flag("--srgb", options.srgb,
@@ -37,13 +36,9 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options) {
 namespace {
 
 EightBitEncoding requested_encoding(const FieldInputOptions& options) {
-  if (options.linear) return EightBitEncoding::linear;
-  if (options.srgb) return EightBitEncoding::srgb;
-  if (options.input_encoding == "auto") return EightBitEncoding::automatic;
-  if (options.input_encoding == "linear") return EightBitEncoding::linear;
-  if (options.input_encoding == "srgb") return EightBitEncoding::srgb;
-  throw Error("--input-encoding must be auto, linear or srgb, got '" + options.input_encoding +
-              "'");
+  if (options.linear || options.input_encoding == "linear") return EightBitEncoding::linear;
+  if (options.srgb || options.input_encoding == "srgb") return EightBitEncoding::srgb;
+  return EightBitEncoding::automatic;  // "auto", the only other value the option accepts
 }
 
 }  // namespace

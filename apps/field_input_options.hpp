@@ -24,7 +24,7 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options);
 std::string describe_field_input(const FieldInputOptions& options);
 
 // The load options for `input` with `threads` workers. Decides the input encoding (once, here)
-// and notes the decision with its reason. Throws Error for an unknown --input-encoding.
+// and notes the decision with its reason.
 FieldLoadOptions field_load_options(const std::string& input, const FieldInputOptions& options,
                                     unsigned threads);
 

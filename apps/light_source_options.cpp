@@ -8,6 +8,7 @@
 #include "core/console.hpp"
 #include "field/light_file.hpp"
 #include "lighting/environment_map.hpp"
+#include "rotation_option.hpp"
 
 namespace relume {
 
@@ -27,10 +28,8 @@ void add_light_source_options(CLI::App& command, LightSourceOptions& options) {
       .add_option("--layout", options.layout,
                   "Environment map layout: auto (from the aspect ratio), latlong, angular, cross")
       ->capture_default_str();
-  command
-      .add_option("--rotate", options.rotate_degrees,
-                  "Rotate the environment about the up axis (+y) by this many degrees")
-      ->capture_default_str();
+  add_rotation_option(command, options.rotate,
+                      "Rotate the environment about the up axis (+y) by this many degrees");
 }
 
 LightRgb resolve_light_vector(const LightSourceOptions& options,
@@ -42,9 +41,10 @@ LightRgb resolve_light_vector(const LightSourceOptions& options,
   if (!options.environment.empty()) {
     const EnvironmentMap map =
         load_environment_map(options.environment, parse_layout_option(options.layout));
-    LightVector vector = integrate_light_vector(map, directions, options.rotate_degrees);
-    note("%s: %s", options.environment.c_str(), describe_coverage(vector).c_str());
-    return vector.rgb;
+    const LightVectorIntegrator integrator(map, directions);
+    const ResolvedRotation rotation = resolve_rotation(options.rotate, integrator);
+    note("%s: %s", options.environment.c_str(), rotation.information.c_str());
+    return integrator.integrate(rotation.degrees).rgb;
   }
   LightRgb lights = read_rgb_rows(options.lights_file, "light vector");
   if (lights.rows() != directions.rows())

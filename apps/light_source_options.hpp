@@ -16,7 +16,7 @@ struct LightSourceOptions {
   std::string lights_file;
   std::string environment;
   std::string layout = "auto";
-  double rotate_degrees = 0;
+  std::string rotate = "0";  // degrees or "auto"
   DirectionalLightOptions moved_light;
 };
 

@@ -13,6 +13,7 @@
 #include "directional_light_options.hpp"
 #include "field/light_file.hpp"
 #include "lighting/environment_map.hpp"
+#include "rotation_option.hpp"
 
 namespace relume {
 namespace {
@@ -21,7 +22,7 @@ struct LightsOptions {
   std::string directions;
   std::string environment;
   std::string layout = "auto";
-  double rotate_degrees = 0;
+  std::string rotate = "0";  // degrees or "auto"
   DirectionalLightOptions moved_light;
   std::string output;
   unsigned threads = 0;
@@ -79,16 +80,17 @@ void run_lights(const LightsOptions& options) {
   }
   if (options.environment.empty()) throw Error("give --env MAP or --light-dir x,y,z");
   const EnvironmentMap map = load_environment_map(options.environment, layout);
-  const LightVector vector =
-      integrate_light_vector(map, directions, options.rotate_degrees, options.threads);
+  const LightVectorIntegrator integrator(map, directions, options.threads);
+  const ResolvedRotation rotation = resolve_rotation(options.rotate, integrator);
+  const LightVector vector = integrator.integrate(rotation.degrees);
   const std::string summary = "environment map " + map.name + " (" + layout_name(map.layout) +
                               ", " + std::to_string(map.radiance.width) + "x" +
                               std::to_string(map.radiance.height) + "), " +
                               std::to_string(directions.rows()) +
-                              " lights: " + describe_coverage(vector) + negative_value_note(map);
+                              " lights: " + rotation.information + negative_value_note(map);
   write_light_vector(options, vector.rgb, summary,
                      "light vector of " + map.name + " for " + options.directions + ", rotated " +
-                         std::to_string(options.rotate_degrees) + " degrees about +y");
+                         std::to_string(rotation.degrees) + " degrees about +y");
 }
 
 const CommandRegistration registration{
@@ -119,11 +121,9 @@ const CommandRegistration registration{
                        "Map layout: auto (2:1 latlong, 1:1 angular, 3:4 vertical cross), latlong, "
                        "angular or cross")
           ->capture_default_str();
-      command
-          ->add_option("--rotate", options->rotate_degrees,
-                       "Rotate the environment about the up axis (+y) by this many degrees, "
-                       "counter-clockwise seen from above (+90 brings light from +x to -z)")
-          ->capture_default_str();
+      add_rotation_option(*command, options->rotate,
+                          "Rotate the environment about the up axis (+y) by this many degrees, "
+                          "counter-clockwise seen from above (+90 brings light from +x to -z)");
       command->add_option(
           "-o,--output", options->output,
           "Write the rows here (atomically) and the summary to stdout; default: rows "

@@ -26,6 +26,7 @@
 #include "lighting/environment_map.hpp"
 #include "relight/compressed_relight_reference.hpp"
 #include "renderer_options.hpp"
+#include "rotation_option.hpp"
 
 namespace relume {
 namespace {
@@ -40,7 +41,7 @@ struct SequenceOptions {
   std::string light_path;
   DirectionalLightOptions moved_light;
   int frames = 36;
-  double rotate_start = 0;
+  std::string rotate_start = "0";  // degrees or "auto"
   double rotate_step = 10;
   std::string output_pattern;
   int batch = 16;
@@ -102,9 +103,12 @@ std::vector<LightRgb> moved_light_frames(const SequenceOptions& options,
       path.push_back(rows.row(i).transpose().cast<double>());
     if (path.empty()) throw Error("light path " + options.light_path + " names no directions");
   } else {
+    if (options.rotate_start == "auto")
+      throw Error("--rotate auto turns environment maps; give --light-orbit its first azimuth");
+    const double first_azimuth = parse_rotation_degrees(options.rotate_start);
     for (int frame = 0; frame < options.frames; ++frame)
-      path.push_back(orbit_direction(*options.orbit_elevation,
-                                     options.rotate_start + frame * options.rotate_step));
+      path.push_back(
+          orbit_direction(*options.orbit_elevation, first_azimuth + frame * options.rotate_step));
   }
   const LightInterpolation interpolation(field.directions);
   int outside = 0;
@@ -131,18 +135,26 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
   const auto layout = parse_layout_option(options.layout);
   std::vector<LightRgb> lights;
   if (!options.environment_list.empty()) {
-    for (const auto& map_path : read_map_list(options.environment_list))
-      lights.push_back(integrate_light_vector(load_environment_map(map_path, layout),
-                                              field.directions, options.rotate_start)
-                           .rgb);
+    // Every map turned by the same rotation (with auto, the first map's best).
+    std::optional<double> rotation;
+    for (const auto& map_path : read_map_list(options.environment_list)) {
+      const LightVectorIntegrator integrator(load_environment_map(map_path, layout),
+                                             field.directions);
+      if (!rotation) {
+        const ResolvedRotation first = resolve_rotation(options.rotate_start, integrator);
+        note("%s: %s", map_path.c_str(), first.information.c_str());
+        rotation = first.degrees;
+      }
+      lights.push_back(integrator.integrate(*rotation).rgb);
+    }
     return lights;
   }
   const LightVectorIntegrator integrator(load_environment_map(options.environment, layout),
                                          field.directions);
+  const ResolvedRotation first = resolve_rotation(options.rotate_start, integrator);
+  note("%s: %s", options.environment.c_str(), first.information.c_str());
   for (int frame = 0; frame < options.frames; ++frame)
-    lights.push_back(integrator.integrate(options.rotate_start + frame * options.rotate_step).rgb);
-  note("%s: %s", options.environment.c_str(),
-       describe_coverage(integrator.integrate(options.rotate_start)).c_str());
+    lights.push_back(integrator.integrate(first.degrees + frame * options.rotate_step).rgb);
   return lights;
 }
 
@@ -241,10 +253,9 @@ const CommandRegistration registration{
       command
           ->add_option("--frames", options->frames, "Frames to render with --env or --light-orbit")
           ->capture_default_str();
-      command
-          ->add_option("--rotate", options->rotate_start,
-                       "Rotation of the first frame (the map's, or the orbit's azimuth), degrees")
-          ->capture_default_str();
+      add_rotation_option(*command, options->rotate_start,
+                          "Rotation of the first frame in degrees: the map's about +y, or the "
+                          "orbit's azimuth");
       command
           ->add_option("--rotate-step", options->rotate_step, "Rotation added per frame, degrees")
           ->capture_default_str();

@@ -199,7 +199,7 @@ TEST_F(FieldInputCommands, TheInputEncodingIsDecidedOnceAndSaid) {
   const auto bad =
       testing::run_relume("relight '" + path("png") + "' --input-encoding gamma --lights '" +
                           path("lights.txt") + "' -o '" + path("bad.exr") + "'");
-  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.exit_code, 2) << "a malformed option value is a usage error";
   EXPECT_NE(bad.output.find("gamma"), std::string::npos) << bad.output;
 }
 
