@@ -11,6 +11,7 @@
 #include "field/mask_file.hpp"
 #include "image/image_difference.hpp"
 #include "json_report.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -20,6 +21,7 @@ struct CompareOptions {
 };
 
 void run_compare(const CompareOptions& options) {
+  check_new_output(options.json);
   const Image image = read_image(options.image);
   const std::vector<std::uint8_t> mask = options.mask.empty()
                                              ? std::vector<std::uint8_t>{}

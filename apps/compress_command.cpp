@@ -26,6 +26,7 @@
 #include "field_input_options.hpp"
 #include "json_report.hpp"
 #include "model/reconstruct_field.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -187,6 +188,28 @@ fs::path output_for(const fs::path& folder, const std::string& input) {
   return folder / (stem + ".relume");
 }
 
+// The container of each input, checked before any work: none may exist (without -y), and two
+// inputs of one name (scans/a and other/a) would write the same OUT/a.relume: refused.
+std::vector<fs::path> output_paths(const CompressArguments& arguments) {
+  check_new_output(arguments.report);
+  const bool several = arguments.inputs.size() > 1;
+  if (several && fs::exists(arguments.output) && !fs::is_directory(arguments.output))
+    throw Error("with several inputs -o names a folder, but " + arguments.output + " is a file");
+  std::vector<fs::path> outputs;
+  for (const std::string& input : arguments.inputs) {
+    const fs::path output =
+        several ? output_for(arguments.output, input) : fs::path(arguments.output);
+    for (std::size_t j = 0; j < outputs.size(); ++j)
+      if (outputs[j] == output)
+        throw Error("inputs " + arguments.inputs[j] + " and " + input + " would both write " +
+                    output.string() + ": compress them into different folders");
+    if (!(arguments.resume && fs::exists(output.string() + ".checkpoint")))
+      check_new_output(output);
+    outputs.push_back(output);
+  }
+  return outputs;
+}
+
 void run_compress(CompressArguments& arguments) {
   CompressionOptions options = arguments.options;
   options.residual = parse_residual_budget(arguments.residual);
@@ -205,6 +228,8 @@ void run_compress(CompressArguments& arguments) {
     throw Error("--target-error must be a relative error > 0, got " +
                 std::to_string(arguments.target_error));
 
+  const std::vector<fs::path> outputs = output_paths(arguments);
+
   std::unique_ptr<OpenClAssigner> opencl;
   if (arguments.assign == "opencl")
     opencl = make_opencl_assigner(arguments.device, options.clustering);
@@ -217,9 +242,9 @@ void run_compress(CompressArguments& arguments) {
   if (several) fs::create_directories(arguments.output);
   nlohmann::ordered_json reports = nlohmann::ordered_json::array();
   nlohmann::ordered_json failures = nlohmann::ordered_json::array();
-  for (const std::string& input : arguments.inputs) {
-    const fs::path output =
-        several ? output_for(arguments.output, input) : fs::path(arguments.output);
+  for (std::size_t i = 0; i < arguments.inputs.size(); ++i) {
+    const std::string& input = arguments.inputs[i];
+    const fs::path& output = outputs[i];
     if (!several) {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
       continue;

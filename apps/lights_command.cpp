@@ -13,6 +13,7 @@
 #include "directional_light_options.hpp"
 #include "field/light_file.hpp"
 #include "lighting/environment_map.hpp"
+#include "output_paths.hpp"
 #include "rotation_option.hpp"
 
 namespace relume {
@@ -72,6 +73,7 @@ void run_moved_light(const LightsOptions& options, const LightDirections& direct
 }
 
 void run_lights(const LightsOptions& options) {
+  check_new_output(options.output);
   const auto layout = parse_layout_option(options.layout);
   const LightDirections directions = read_light_directions(options.directions);
   if (!options.moved_light.direction.empty()) {

@@ -16,6 +16,7 @@
 #include "field/mask_file.hpp"
 #include "field_input_options.hpp"
 #include "light_source_options.hpp"
+#include "output_paths.hpp"
 #include "renderer_options.hpp"
 
 namespace relume {
@@ -59,6 +60,7 @@ void relight_container(const RelightOptions& options) {
 }
 
 void run_relight(const RelightOptions& options) {
+  check_new_output(options.output);
   if (std::filesystem::path(options.input).extension() == ".relume") {
     relight_container(options);
     return;

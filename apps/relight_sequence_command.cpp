@@ -24,6 +24,7 @@
 #include "image/image_difference.hpp"
 #include "json_report.hpp"
 #include "lighting/environment_map.hpp"
+#include "output_paths.hpp"
 #include "relight/compressed_relight_reference.hpp"
 #include "renderer_options.hpp"
 #include "rotation_option.hpp"
@@ -161,8 +162,11 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
 void run_sequence(const SequenceOptions& options) {
   check_pattern(options.output_pattern);
   if (options.batch < 1) throw Error("--batch must be at least 1");
+  check_new_output(options.report);
   const CompressedField field = read_container(options.input);
   const std::vector<LightRgb> lights = frame_lights(options, field);
+  for (std::size_t frame = 0; frame < lights.size(); ++frame)
+    check_new_output(frame_path(options.output_pattern, int(frame)));
   Relighter renderer(field, options.renderer.relighter);
   const int cap = residual_cap(options.renderer, field.lights);
   const fs::path folder = fs::path(frame_path(options.output_pattern, 0)).parent_path();

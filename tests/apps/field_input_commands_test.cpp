@@ -63,7 +63,7 @@ class FieldInputCommands : public ::testing::Test {
   }
   static Image relight(const std::string& input, const std::string& extra,
                        const std::string& output) {
-    run_or_fail("relight '" + input + "' --lights '" + path("lights.txt") + "' " + extra + " -o '" +
+    run_or_fail("-y relight '" + input + "' --lights '" + path("lights.txt") + "' " + extra + " -o '" +
                 path(output) + "'");
     return read_image(path(output));
   }

@@ -44,7 +44,7 @@ class MovedLightCommands : public ::testing::Test {
   }
   static Image relight(const std::string& input, const std::string& light_arguments,
                        const std::string& output) {
-    run_or_fail("relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
+    run_or_fail("-y relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
     return read_image(path(output));
   }
   // "x,y,z" of captured light `light` (0-based).

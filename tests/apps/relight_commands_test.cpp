@@ -52,7 +52,7 @@ class RelightCommands : public ::testing::Test {
   // `relume relight` of the container into `output` with extra arguments; returns the image.
   static Image relight(const std::string& input, const std::string& light_arguments,
                        const std::string& output) {
-    run_or_fail("relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
+    run_or_fail("-y relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
     return read_image(path(output));
   }
 
