@@ -15,6 +15,7 @@
 #include "core/console.hpp"
 #include "field/mask_file.hpp"
 #include "field_input_options.hpp"
+#include "image_output_options.hpp"
 #include "light_source_options.hpp"
 #include "output_paths.hpp"
 #include "renderer_options.hpp"
@@ -28,7 +29,7 @@ struct RelightOptions {
   RendererOptions renderer;
   FieldInputOptions field_input;
   std::string output;
-  double exposure = 0;
+  ImageOutputOptions image_output;
   unsigned threads = 0;
 };
 
@@ -51,16 +52,21 @@ void relight_container(const RelightOptions& options) {
   Relighter renderer(field, options.renderer.relighter);
   const int cap = residual_cap(options.renderer, field.lights);
   Image image = renderer.relight(lights, cap);
-  if (!options.field_input.mask_file.empty())
-    black_outside(image, read_mask(options.field_input.mask_file, field.width, field.height));
+  std::vector<std::uint8_t> mask = field.mask;
+  if (!options.field_input.mask_file.empty()) {
+    mask = read_mask(options.field_input.mask_file, field.width, field.height);
+    black_outside(image, mask);
+  }
   detail("relight: %s, residual cap %s, kernels %.2f ms", renderer.device_name().c_str(),
          cap == full_residual ? "all" : std::to_string(cap).c_str(),
          1e3 * renderer.last_kernel_seconds());
-  write_image(options.output, image, {options.exposure});
+  write_image(options.output, image,
+              resolve_image_output(options.output, options.image_output, image, mask));
 }
 
 void run_relight(const RelightOptions& options) {
   check_new_output(options.output);
+  check_image_output(options.output, options.image_output);
   if (std::filesystem::path(options.input).extension() == ".relume") {
     relight_container(options);
     return;
@@ -70,7 +76,8 @@ void run_relight(const RelightOptions& options) {
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
   Image image = relight_field(field, lights, options.threads);
   black_outside(image, field.mask);
-  write_image(options.output, image, {options.exposure});
+  write_image(options.output, image,
+              resolve_image_output(options.output, options.image_output, image, field.mask));
 }
 
 const CommandRegistration registration{
@@ -92,11 +99,10 @@ const CommandRegistration registration{
       add_field_input_options(*command, options->field_input);
       command
           ->add_option("-o,--output", options->output,
-                       "Output image: .exr/.hdr/.tif are linear float, .png/.jpg are exposed and "
-                       "sRGB-encoded")
+                       "Output image: .exr/.hdr/.tif are linear float (--half: EXR as half), "
+                       ".png/.jpg (and .tif with --bits) are exposed and sRGB-encoded")
           ->required();
-      command->add_option("--exposure", options->exposure,
-                          "Exposure in stops applied to 8-bit outputs (default 0)");
+      add_image_output_options(*command, options->image_output);
       command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
       command->callback([options] { run_relight(*options); });
     }};

@@ -21,7 +21,9 @@
 #include "core/progress.hpp"
 #include "directional_light_options.hpp"
 #include "field/light_file.hpp"
+#include "frame_pattern.hpp"
 #include "image/image_difference.hpp"
+#include "image_output_options.hpp"
 #include "json_report.hpp"
 #include "lighting/environment_map.hpp"
 #include "output_paths.hpp"
@@ -46,32 +48,12 @@ struct SequenceOptions {
   double rotate_step = 10;
   std::string output_pattern;
   int batch = 16;
-  double exposure = 0;
+  int start_number = 0;
+  ImageOutputOptions image_output;
   bool compare = false;
   std::string report;
   RendererOptions renderer;
 };
-
-// The frame's file name from a printf pattern with one integer conversion (frames/%04d.png).
-std::string frame_path(const std::string& pattern, int frame) {
-  std::vector<char> buffer(pattern.size() + 32);
-  std::snprintf(buffer.data(), buffer.size(), pattern.c_str(), frame);
-  return buffer.data();
-}
-
-void check_pattern(const std::string& pattern) {
-  const auto percent = pattern.find('%');
-  const bool one_conversion = percent != std::string::npos &&
-                              pattern.find('%', percent + 1) == std::string::npos &&
-                              pattern.find_first_of("d", percent) != std::string::npos;
-  if (!one_conversion)
-    throw Error("output pattern '" + pattern +
-                "' needs exactly one frame-number conversion such as %04d (frames/%04d.png)");
-  const std::size_t d = pattern.find('d', percent);
-  for (std::size_t i = percent + 1; i < d; ++i)
-    if (!std::isdigit(static_cast<unsigned char>(pattern[i])))
-      throw Error("output pattern '" + pattern + "': only %d with a width (%04d) is supported");
-}
 
 std::vector<std::string> read_map_list(const std::string& list) {
   std::ifstream in(list);
@@ -160,21 +142,23 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
 }
 
 void run_sequence(const SequenceOptions& options) {
-  check_pattern(options.output_pattern);
+  const FramePattern pattern(options.output_pattern, options.start_number);
+  check_image_output(pattern.path(0), options.image_output);
   if (options.batch < 1) throw Error("--batch must be at least 1");
   check_new_output(options.report);
   const CompressedField field = read_container(options.input);
   const std::vector<LightRgb> lights = frame_lights(options, field);
   for (std::size_t frame = 0; frame < lights.size(); ++frame)
-    check_new_output(frame_path(options.output_pattern, int(frame)));
+    check_new_output(pattern.path(int(frame)));
   Relighter renderer(field, options.renderer.relighter);
   const int cap = residual_cap(options.renderer, field.lights);
-  const fs::path folder = fs::path(frame_path(options.output_pattern, 0)).parent_path();
+  const fs::path folder = fs::path(pattern.path(0)).parent_path();
   if (!folder.empty()) fs::create_directories(folder);
 
   using clock = std::chrono::steady_clock;
   double relight_seconds = 0, kernel_seconds = 0, kernel_bytes = 0;
   nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+  std::optional<ImageWriteOptions> write;  // from the first frame (its auto exposure, if asked)
   ProgressReporter progress("relight-sequence", lights.size());
   for (std::size_t first = 0; first < lights.size(); first += options.batch) {
     const std::size_t count = std::min<std::size_t>(options.batch, lights.size() - first);
@@ -188,9 +172,11 @@ void run_sequence(const SequenceOptions& options) {
     if (options.compare) references = renderer.relight_batch(batch, full_residual);
     for (std::size_t b = 0; b < count; ++b) {
       const int frame = static_cast<int>(first + b);
-      write_image(frame_path(options.output_pattern, frame), images[b], {options.exposure});
-      nlohmann::ordered_json record = {{"frame", frame},
-                                       {"file", frame_path(options.output_pattern, frame)}};
+      if (!write)
+        write =
+            resolve_image_output(pattern.path(frame), options.image_output, images[b], field.mask);
+      write_image(pattern.path(frame), images[b], *write);
+      nlohmann::ordered_json record = {{"frame", frame}, {"file", pattern.path(frame)}};
       if (options.compare)
         record["error"] = image_difference(images[b], references[b]).relative_squared_error;
       frames.push_back(record);
@@ -265,14 +251,18 @@ const CommandRegistration registration{
           ->capture_default_str();
       command
           ->add_option("-o,--output", options->output_pattern,
-                       "Frame file pattern with one %d conversion, e.g. frames/%04d.exr or .png")
+                       "Frame file pattern with one frame number, %d, %04d or #### (four digits), "
+                       "e.g. frames/%04d.exr or frames/####.png")
           ->required();
       command
           ->add_option("--batch", options->batch,
                        "Frames relit together in one pass over the compressed data")
           ->capture_default_str();
-      command->add_option("--exposure", options->exposure, "Exposure in stops for 8-bit outputs")
+      command
+          ->add_option("--start-number", options->start_number,
+                       "Number of the first frame in the file names")
           ->capture_default_str();
+      add_image_output_options(*command, options->image_output);
       command->add_flag("--compare", options->compare,
                         "Also render each frame with the full residual and report the error");
       command->add_option("--report", options->report, "Write a JSON report of the run");

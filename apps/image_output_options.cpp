@@ -1,0 +1,78 @@
+// Implementation of the shared image output options.
+#include "image_output_options.hpp"
+
+#include <cmath>
+#include <relume/error.hpp>
+
+#include "core/console.hpp"
+#include "image/auto_exposure.hpp"
+
+namespace relume {
+
+namespace {
+
+double parse_stops(const std::string& text) {
+  std::size_t used = 0;
+  double stops = NAN;
+  try {
+    stops = std::stod(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != text.size() || !std::isfinite(stops))
+    throw Error("--exposure must be a number of stops or 'auto', got '" + text + "'");
+  return stops;
+}
+
+}  // namespace
+
+void add_image_output_options(CLI::App& command, ImageOutputOptions& options) {
+  command
+      .add_option("--exposure", options.exposure,
+                  "Exposure in stops for integer outputs (PNG, JPEG, TIFF with --bits), or auto: "
+                  "the 99th percentile of the lit object's luminance maps to 0.9")
+      ->capture_default_str()
+      ->check(
+          [](const std::string& text) {
+            try {
+              if (text != "auto") parse_stops(text);
+              return std::string();
+            } catch (const Error& e) {
+              return std::string(e.what());
+            }
+          },
+          "STOPS|auto");
+  command
+      .add_option("--bits", options.bits,
+                  "Bits per channel of integer outputs: 8 or 16 for PNG and TIFF (a TIFF without "
+                  "--bits is linear float), 8 for JPEG")
+      ->check(CLI::IsMember({8, 16}));
+  command.add_flag("--half", options.half,
+                   "Write EXR outputs as half floats (half the bytes) instead of float");
+}
+
+void check_image_output(const std::filesystem::path& path, const ImageOutputOptions& options) {
+  check_image_write_options(path, {0, options.bits, options.half});
+}
+
+ImageWriteOptions resolve_image_output(const std::filesystem::path& path,
+                                       const ImageOutputOptions& options, const Image& image,
+                                       const std::vector<std::uint8_t>& mask) {
+  ImageWriteOptions write{0, options.bits, options.half};
+  const bool integer = !is_float_image_format(path) || options.bits != 0;
+  if (options.exposure != "auto") {
+    write.exposure = parse_stops(options.exposure);
+  } else if (integer) {
+    const AutoExposure automatic = auto_exposure(image, mask);
+    write.exposure = automatic.stops;
+    if (automatic.lit_pixels == 0)
+      note("--exposure auto: nothing is lit, exposure 0");
+    else
+      note(
+          "--exposure auto: %+.2f stops (the 99th percentile of %zu lit pixels, %.4g, maps to "
+          "0.9)",
+          automatic.stops, automatic.lit_pixels, automatic.percentile);
+  }
+  return write;
+}
+
+}  // namespace relume
