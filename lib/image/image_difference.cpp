@@ -2,9 +2,15 @@
 #include "image/image_difference.hpp"
 
 #include <cmath>
+#include <limits>
 #include <relume/error.hpp>
 
 namespace relume {
+
+double peak_signal_to_noise_db(const ImageDifference& difference) {
+  if (difference.mean_squared_difference == 0) return std::numeric_limits<double>::infinity();
+  return -10.0 * std::log10(difference.mean_squared_difference);
+}
 
 ImageDifference image_difference(const Image& image, const Image& reference,
                                  const std::string& image_label, const std::string& reference_label,
@@ -43,6 +49,7 @@ ImageDifference image_difference(const Image& image, const Image& reference,
       result.max_channel = int(i % image.channels);
     }
   }
+  result.mean_squared_difference = result.values > 0 ? difference / double(result.values) : 0;
   result.relative_squared_error = energy > 0 ? difference / energy : (difference > 0 ? 1.0 : 0.0);
   return result;
 }
