@@ -102,8 +102,12 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressionOptions options = base_options;
   if (opencl) options.clustering.assign = opencl->function();
 
-  const ReflectanceField field = load_field(
-      input, field_load_options(input, arguments.field_input, options.clustering.threads));
+  ContainerOptions container;
+  container.weights = parse_value_precision(arguments.weights_precision);
+  container.residual = parse_value_precision(arguments.residual_precision);
+
+  const ReflectanceField field =
+      load_input_field(input, arguments.field_input, options.clustering.threads);
   const double load_seconds = seconds_since(start);
   note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
        field.height, field.channels, field.lights(), load_seconds);
@@ -117,13 +121,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
          resume->iterations.size());
   }
   CompressionStats stats;
-  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord&) {
+  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord& record) {
     write_checkpoint(checkpoint, print, model, stats.clustering.iterations);
+    note(
+        "compress: iteration %d: L1 objective %.6g, %zu of %zu functions changed cluster, %d "
+        "clusters, %.2f s",
+        record.iteration, record.objective, record.changed, model.assignment.size(),
+        record.clusters, record.seconds);
   };
-
-  ContainerOptions container;
-  container.weights = parse_value_precision(arguments.weights_precision);
-  container.residual = parse_value_precision(arguments.residual_precision);
 
   CompressedField compressed;
   nlohmann::ordered_json target_choice;

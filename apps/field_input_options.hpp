@@ -23,9 +23,9 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options);
 // The options as one line ("mask folder, encoding auto"), for checkpoint fingerprints.
 std::string describe_field_input(const FieldInputOptions& options);
 
-// The load options for `input` with `threads` workers. Decides the input encoding (once, here)
-// and notes the decision with its reason.
-FieldLoadOptions field_load_options(const std::string& input, const FieldInputOptions& options,
-                                    unsigned threads);
+// Loads `input` with `threads` workers as the options say: decides the input encoding (once)
+// and notes the decision with its reason, and shows a progress bar while the images load.
+ReflectanceField load_input_field(const std::string& input, const FieldInputOptions& options,
+                                  unsigned threads);
 
 }  // namespace relume

@@ -67,12 +67,13 @@ void relight_container(const RelightOptions& options) {
 void run_relight(const RelightOptions& options) {
   check_new_output(options.output);
   check_image_output(options.output, options.image_output);
+  check_renderer_options(options.renderer);
   if (std::filesystem::path(options.input).extension() == ".relume") {
     relight_container(options);
     return;
   }
-  const ReflectanceField field = load_field(
-      options.input, field_load_options(options.input, options.field_input, options.threads));
+  const ReflectanceField field =
+      load_input_field(options.input, options.field_input, options.threads);
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
   Image image = relight_field(field, lights, options.threads);
   black_outside(image, field.mask);

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <relume/image.hpp>
 #include <string>
 #include <vector>
@@ -54,6 +55,9 @@ struct FieldLoadOptions {
   // too; non-zero = inside). With use_mask false every pixel is inside and nothing is read.
   std::filesystem::path mask_file;
   bool use_mask = true;
+  // Called once per light image as it is read, from the loading threads (so it must be
+  // thread-safe): progress reporting. Empty: nothing is called.
+  std::function<void()> image_loaded;
 };
 
 // `path` is a field folder or an .lp file. Throws Error naming the file, line or pixel at fault.

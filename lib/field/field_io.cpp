@@ -71,6 +71,7 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
     for (std::int64_t p = 0; p < field.pixels(); ++p)
       for (int c = 0; c < field.channels; ++c)
         field.values(p * field.channels + c, i) = image.pixels[p * image.channels + c] * scale[c];
+    if (options.image_loaded) options.image_loaded();
   });
 
   const fs::path mask = options.mask_file.empty() ? source.mask : options.mask_file;
