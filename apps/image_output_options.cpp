@@ -54,24 +54,27 @@ void check_image_output(const std::filesystem::path& path, const ImageOutputOpti
   check_image_write_options(path, {0, options.bits, options.half});
 }
 
+double display_exposure(const ImageOutputOptions& options, const Image& image,
+                        const std::vector<std::uint8_t>& mask) {
+  if (options.exposure != "auto") return parse_stops(options.exposure);
+  const AutoExposure automatic = auto_exposure(image, mask);
+  if (automatic.lit_pixels == 0)
+    note("--exposure auto: nothing is lit, exposure 0");
+  else
+    note(
+        "--exposure auto: %+.2f stops (the 99th percentile of %zu lit pixels, %.4g, maps to "
+        "0.9)",
+        automatic.stops, automatic.lit_pixels, automatic.percentile);
+  return automatic.stops;
+}
+
 ImageWriteOptions resolve_image_output(const std::filesystem::path& path,
                                        const ImageOutputOptions& options, const Image& image,
                                        const std::vector<std::uint8_t>& mask) {
   ImageWriteOptions write{0, options.bits, options.half};
-  const bool integer = !is_float_image_format(path) || options.bits != 0;
-  if (options.exposure != "auto") {
-    write.exposure = parse_stops(options.exposure);
-  } else if (integer) {
-    const AutoExposure automatic = auto_exposure(image, mask);
-    write.exposure = automatic.stops;
-    if (automatic.lit_pixels == 0)
-      note("--exposure auto: nothing is lit, exposure 0");
-    else
-      note(
-          "--exposure auto: %+.2f stops (the 99th percentile of %zu lit pixels, %.4g, maps to "
-          "0.9)",
-          automatic.stops, automatic.lit_pixels, automatic.percentile);
-  }
+  // Floats are written unexposed: only an integer output needs (and measures) an exposure.
+  if (!is_float_image_format(path) || options.bits != 0)
+    write.exposure = display_exposure(options, image, mask);
   return write;
 }
 

@@ -24,6 +24,11 @@ void add_image_output_options(CLI::App& command, ImageOutputOptions& options);
 // Throws Error when the options do not fit `path` (before any work is done).
 void check_image_output(const std::filesystem::path& path, const ImageOutputOptions& options);
 
+// The exposure in stops of a display-referred (integer or video) output of `image`: the given
+// number, or for auto measured inside `mask` (empty: everywhere) and noted.
+double display_exposure(const ImageOutputOptions& options, const Image& image,
+                        const std::vector<std::uint8_t>& mask);
+
 // The write options for `image` to `path`; auto exposure is measured on `image` inside `mask`
 // (empty: everywhere) and noted, for integer outputs only (floats are written unexposed).
 ImageWriteOptions resolve_image_output(const std::filesystem::path& path,

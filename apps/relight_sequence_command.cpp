@@ -1,6 +1,7 @@
 // `relume relight-sequence`: an animated relighting of a .relume container: one map rotated by a
 // fixed step per frame, one map per frame from a list, a moved light circling the object
-// (--light-orbit) or following a file of directions (--light-path). Frames are relit B at a time in
+// (--light-orbit) or following a file of directions (--light-path), written as numbered images
+// and/or a video (--video, apps/video_writer.hpp). Frames are relit B at a time in
 // one pass over W and the residual, written as numbered images, and the run reports frames/s, the
 // kernels' GB/s and, with --compare, each frame's error against the full-residual render.
 #include <chrono>
@@ -30,6 +31,7 @@
 #include "relight/compressed_relight_reference.hpp"
 #include "renderer_options.hpp"
 #include "rotation_option.hpp"
+#include "video_writer.hpp"
 
 namespace relume {
 namespace {
@@ -49,6 +51,9 @@ struct SequenceOptions {
   std::string output_pattern;
   int batch = 16;
   int start_number = 0;
+  std::string video;
+  int video_fps = 24;
+  std::string video_codec;
   ImageOutputOptions image_output;
   bool compare = false;
   std::string report;
@@ -141,16 +146,26 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
 }
 
 void run_sequence(const SequenceOptions& options) {
-  const FramePattern pattern(options.output_pattern, options.start_number);
-  check_image_output(pattern.path(0), options.image_output);
+  if (options.output_pattern.empty() && options.video.empty())
+    throw Error("give -o PATTERN (frame images), --video FILE, or both");
+  std::optional<FramePattern> pattern;
+  if (!options.output_pattern.empty()) {
+    pattern.emplace(options.output_pattern, options.start_number);
+    check_image_output(pattern->path(0), options.image_output);
+  }
+  if (!options.video.empty()) {
+    check_new_output(options.video);
+    VideoWriter::check_target(options.video, options.video_codec);
+  }
   if (options.batch < 1) throw Error("--batch must be at least 1");
   if (options.frames < 1) throw Error("--frames must be at least 1");
   check_renderer_options(options.renderer);
   check_new_output(options.report);
   const CompressedField field = read_container(options.input);
   const std::vector<LightRgb> lights = frame_lights(options, field);
-  for (std::size_t frame = 0; frame < lights.size(); ++frame)
-    check_new_output(pattern.path(int(frame)));
+  if (pattern)
+    for (std::size_t frame = 0; frame < lights.size(); ++frame)
+      check_new_output(pattern->path(int(frame)));
   const int cap = residual_cap(options.renderer, field.lights);
   using clock = std::chrono::steady_clock;
   // Set-up apart from frames/s: uploading the field, and building the kernels, which happens on
@@ -166,12 +181,18 @@ void run_sequence(const SequenceOptions& options) {
       "relight-sequence: set-up %.2f s (field upload, kernel build, one warm-up relight per "
       "batch size), not counted in frames/s",
       setup_seconds);
-  const fs::path folder = fs::path(pattern.path(0)).parent_path();
-  if (!folder.empty()) fs::create_directories(folder);
+  if (pattern) {
+    const fs::path folder = fs::path(pattern->path(0)).parent_path();
+    if (!folder.empty()) fs::create_directories(folder);
+  }
+  std::optional<VideoWriter> video;
+  if (!options.video.empty())
+    video.emplace(options.video, field.width, field.height, options.video_fps, options.video_codec);
 
   double relight_seconds = 0, kernel_seconds = 0, kernel_bytes = 0;
   nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-  std::optional<ImageWriteOptions> write;  // from the first frame (its auto exposure, if asked)
+  // From the first frame (its auto exposure, if asked), for every frame.
+  std::optional<ImageWriteOptions> write;
   ProgressReporter progress("relight-sequence", lights.size());
   for (std::size_t first = 0; first < lights.size(); first += options.batch) {
     const std::size_t count = std::min<std::size_t>(options.batch, lights.size() - first);
@@ -185,11 +206,19 @@ void run_sequence(const SequenceOptions& options) {
     if (options.compare) references = renderer.relight_batch(batch, full_residual);
     for (std::size_t b = 0; b < count; ++b) {
       const int frame = static_cast<int>(first + b);
-      if (!write)
-        write =
-            resolve_image_output(pattern.path(frame), options.image_output, images[b], field.mask);
-      write_image(pattern.path(frame), images[b], *write);
-      nlohmann::ordered_json record = {{"frame", frame}, {"file", pattern.path(frame)}};
+      if (!write) {
+        const bool display =
+            video || !is_float_image_format(pattern->path(0)) || options.image_output.bits != 0;
+        write = ImageWriteOptions{
+            display ? display_exposure(options.image_output, images[b], field.mask) : 0.0,
+            options.image_output.bits, options.image_output.half};
+      }
+      nlohmann::ordered_json record = {{"frame", frame}};
+      if (pattern) {
+        write_image(pattern->path(frame), images[b], *write);
+        record["file"] = pattern->path(frame);
+      }
+      if (video) video->add_frame(images[b], write->exposure);
       if (options.compare)
         record["error"] = image_difference(images[b], references[b]).relative_squared_error;
       frames.push_back(record);
@@ -197,6 +226,11 @@ void run_sequence(const SequenceOptions& options) {
     }
   }
   progress.finish();
+  if (video) {
+    video->finish();
+    say("wrote %s: %d frames, %s, %d frames/s", options.video.c_str(), video->frames(),
+        video->codec_name().c_str(), options.video_fps);
+  }
 
   const double fps = relight_seconds > 0 ? lights.size() / relight_seconds : 0;
   const double gbps = kernel_seconds > 0 ? 1e-9 * kernel_bytes / kernel_seconds : 0;
@@ -219,7 +253,12 @@ void run_sequence(const SequenceOptions& options) {
                                            {"frames_per_second", fps},
                                            {"kernel_gbps", gbps},
                                            {"per_frame", frames}};
-    write_json_report(options.report, report);
+    nlohmann::ordered_json document = report;
+    if (video)
+      document["video"] = {{"file", options.video},
+                           {"codec", video->codec_name()},
+                           {"frames_per_second", options.video_fps}};
+    write_json_report(options.report, document);
   }
 }
 
@@ -263,11 +302,20 @@ const CommandRegistration registration{
       command
           ->add_option("--rotate-step", options->rotate_step, "Rotation added per frame, degrees")
           ->capture_default_str();
-      command
-          ->add_option("-o,--output", options->output_pattern,
-                       "Frame file pattern with one frame number, %d, %04d or #### (four digits), "
-                       "e.g. frames/%04d.exr or frames/####.png")
-          ->required();
+      command->add_option(
+          "-o,--output", options->output_pattern,
+          "Frame file pattern with one frame number, %d, %04d or #### (four digits), "
+          "e.g. frames/%04d.exr or frames/####.png (optional with --video)");
+      command->add_option(
+          "--video", options->video,
+          "Also (or only) encode the frames into this video with FFmpeg's libraries: H.264 "
+          "(libx264) in .mp4/.mkv/.mov, VP9 in .webm; exposed like PNG frames");
+      command->add_option("--fps", options->video_fps, "Frames per second of --video")
+          ->check(CLI::Range(1, 240))
+          ->capture_default_str();
+      command->add_option("--codec", options->video_codec,
+                          "FFmpeg encoder for --video instead of the default (e.g. mpeg4, "
+                          "libvpx-vp9)");
       command
           ->add_option("--batch", options->batch,
                        "Frames relit together in one pass over the compressed data")

@@ -8,6 +8,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
   libglpk-dev libopenimageio-dev openimageio-tools libeigen3-dev
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev python3-numpy python3-openimageio
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
 )
 
 missing=()
