@@ -1,29 +1,11 @@
 // Implementation of the shared image output options.
 #include "image_output_options.hpp"
 
-#include <cmath>
-#include <relume/error.hpp>
-
 #include "core/console.hpp"
 #include "image/auto_exposure.hpp"
+#include "number_or_auto.hpp"
 
 namespace relume {
-
-namespace {
-
-double parse_stops(const std::string& text) {
-  std::size_t used = 0;
-  double stops = NAN;
-  try {
-    stops = std::stod(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != text.size() || !std::isfinite(stops))
-    throw Error("--exposure must be a number of stops or 'auto', got '" + text + "'");
-  return stops;
-}
-
-}  // namespace
 
 void add_image_output_options(CLI::App& command, ImageOutputOptions& options) {
   command
@@ -31,16 +13,7 @@ void add_image_output_options(CLI::App& command, ImageOutputOptions& options) {
                   "Exposure in stops for integer outputs (PNG, JPEG, TIFF with --bits), or auto: "
                   "the 99th percentile of the lit object's luminance maps to 0.9")
       ->capture_default_str()
-      ->check(
-          [](const std::string& text) {
-            try {
-              if (text != "auto") parse_stops(text);
-              return std::string();
-            } catch (const Error& e) {
-              return std::string(e.what());
-            }
-          },
-          "STOPS|auto");
+      ->check(number_or_auto("--exposure", "stops"));
   command
       .add_option("--bits", options.bits,
                   "Bits per channel of integer outputs: 8 or 16 for PNG and TIFF (a TIFF without "
@@ -56,7 +29,8 @@ void check_image_output(const std::filesystem::path& path, const ImageOutputOpti
 
 double display_exposure(const ImageOutputOptions& options, const Image& image,
                         const std::vector<std::uint8_t>& mask) {
-  if (options.exposure != "auto") return parse_stops(options.exposure);
+  if (options.exposure != "auto")
+    return parse_finite_number(options.exposure, "--exposure", "stops");
   const AutoExposure automatic = auto_exposure(image, mask);
   if (automatic.lit_pixels == 0)
     note("--exposure auto: nothing is lit, exposure 0");

@@ -1,11 +1,10 @@
 // Implementation of --rotate DEG|auto.
 #include "rotation_option.hpp"
 
-#include <cmath>
 #include <cstdio>
-#include <relume/error.hpp>
 
 #include "lighting/best_rotation.hpp"
+#include "number_or_auto.hpp"
 
 namespace relume {
 
@@ -16,28 +15,11 @@ CLI::Option* add_rotation_option(CLI::App& command, std::string& rotate, const s
                       "; auto: the rotation that leaves the least of the map's energy outside "
                       "the light set")
       ->capture_default_str()
-      ->check(
-          [](const std::string& text) {
-            try {
-              if (text != "auto") parse_rotation_degrees(text);
-              return std::string();
-            } catch (const Error& e) {
-              return std::string(e.what());
-            }
-          },
-          "DEG|auto");
+      ->check(number_or_auto("--rotate", "degrees"));
 }
 
 double parse_rotation_degrees(const std::string& text) {
-  std::size_t used = 0;
-  double degrees = NAN;
-  try {
-    degrees = std::stod(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != text.size() || !std::isfinite(degrees))
-    throw Error("--rotate must be a number of degrees or 'auto', got '" + text + "'");
-  return degrees;
+  return parse_finite_number(text, "--rotate", "degrees");
 }
 
 ResolvedRotation resolve_rotation(const std::string& rotate,

@@ -28,10 +28,10 @@ double energy_in_columns(const Image& image, int x_begin, int x_end) {
   return energy;
 }
 
-class FieldInputCommands : public ::testing::Test {
+class FieldInputCommands : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new testing::TempDir;
+    CommandSuite::SetUpTestSuite();
     run_or_fail("synth -o '" + path("scene") + "' --size 24x20 --lights 30 --samples 1");
     // The whole frame is inside the scene's own mask, the left half inside left.png.
     Image all(width, height, 1), left(width, height, 1);
@@ -53,29 +53,18 @@ class FieldInputCommands : public ::testing::Test {
     std::ofstream sun(path("lights.txt"));
     for (int i = 0; i < lights; ++i) sun << "1 0.8 0.6\n";
   }
-  static void TearDownTestSuite() { delete folder_; }
 
-  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
-  static testing::CommandResult run_or_fail(const std::string& arguments) {
-    const auto result = testing::run_relume(arguments);
-    EXPECT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
-    return result;
-  }
   static Image relight(const std::string& input, const std::string& extra,
                        const std::string& output) {
-    run_or_fail("-y relight '" + input + "' --lights '" + path("lights.txt") + "' " + extra + " -o '" +
-                path(output) + "'");
+    run_or_fail("-y relight '" + input + "' --lights '" + path("lights.txt") + "' " + extra +
+                " -o '" + path(output) + "'");
     return read_image(path(output));
   }
   static nlohmann::json read_json(const std::string& name) {
     std::ifstream in(path(name));
     return nlohmann::json::parse(in);
   }
-
-  static testing::TempDir* folder_;
 };
-
-testing::TempDir* FieldInputCommands::folder_ = nullptr;
 
 TEST_F(FieldInputCommands, RelightOfAFolderAppliesItsMaskUnlessToldNot) {
   fs::create_directories(path("masked"));

@@ -17,31 +17,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double relative_difference(const Image& a, const Image& b) {
-  EXPECT_EQ(a.pixels.size(), b.pixels.size());
-  double difference = 0, energy = 0;
-  for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
-    difference += std::pow(double(a.pixels[i]) - b.pixels[i], 2);
-    energy += double(b.pixels[i]) * b.pixels[i];
-  }
-  return difference / energy;
-}
-
-class MovedLightCommands : public ::testing::Test {
+class MovedLightCommands : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new testing::TempDir;
+    CommandSuite::SetUpTestSuite();
     run_or_fail("synth -o '" + path("scene") + "' --size 24x20 --lights 40 --samples 1");
     run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
                 "' --clusters 4 --terms 2 --residual 6");
   }
-  static void TearDownTestSuite() { delete folder_; }
 
-  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
-  static void run_or_fail(const std::string& arguments) {
-    const auto result = testing::run_relume(arguments);
-    ASSERT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
-  }
   static Image relight(const std::string& input, const std::string& light_arguments,
                        const std::string& output) {
     run_or_fail("-y relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
@@ -62,11 +46,7 @@ class MovedLightCommands : public ::testing::Test {
     for (int i = 0; i < 40; ++i) out << (i == light ? rgb : "0 0 0") << '\n';
     return file;
   }
-
-  static testing::TempDir* folder_;
 };
-
-testing::TempDir* MovedLightCommands::folder_ = nullptr;
 
 TEST_F(MovedLightCommands, AtACapturedDirectionTheImageIsThatLightsImage) {
   // Three lights towards the camera (lights behind the scene leave its visible side black).
@@ -81,7 +61,8 @@ TEST_F(MovedLightCommands, AtACapturedDirectionTheImageIsThatLightsImage) {
     for (const std::string& input : {path("scene"), path("scene.relume")}) {
       const Image moved = relight(input, dir + " --light-color 1,0.5,2", "moved.exr");
       const Image captured = relight(input, one_hot, "captured.exr");
-      EXPECT_LT(relative_difference(moved, captured), 1e-12) << input << " light " << light;
+      EXPECT_LT(testing::relative_squared_difference(moved, captured), 1e-12)
+          << input << " light " << light;
     }
   }
 }
@@ -148,7 +129,7 @@ TEST_F(MovedLightCommands, ALightPathFileGivesOneFramePerDirection) {
   EXPECT_TRUE(fs::exists(path("path/02.exr")));
   EXPECT_FALSE(fs::exists(path("path/03.exr")));
   const Image single = relight(path("scene.relume"), "--light-dir=-0.5,0.3,0.6", "single.exr");
-  EXPECT_LT(relative_difference(read_image(path("path/01.exr")), single), 1e-12);
+  EXPECT_LT(testing::relative_squared_difference(read_image(path("path/01.exr")), single), 1e-12);
 }
 
 TEST_F(MovedLightCommands, MalformedDirectionsAreRefused) {

@@ -19,33 +19,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class OutputOptions : public ::testing::Test {
+class OutputOptions : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new testing::TempDir;
+    CommandSuite::SetUpTestSuite();
     run_or_fail("synth -o '" + path("scene") + "' --size 16x12 --lights 20 --samples 1");
     run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
                 "' --clusters 2 --terms 2 --residual 3");
     std::ofstream lights(path("lights.txt"));
     for (int i = 0; i < 20; ++i) lights << "1 1 1\n";
   }
-  static void TearDownTestSuite() { delete folder_; }
 
-  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
-  static testing::CommandResult run_or_fail(const std::string& arguments) {
-    const auto result = testing::run_relume(arguments);
-    EXPECT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
-    return result;
-  }
   static std::string relight_to(const std::string& output) {
     return "relight '" + path("scene.relume") + "' --lights '" + path("lights.txt") + "' -o '" +
            path(output) + "'";
   }
-
-  static testing::TempDir* folder_;
 };
-
-testing::TempDir* OutputOptions::folder_ = nullptr;
 
 TEST_F(OutputOptions, AnExistingOutputIsReplacedOnlyWithOverwrite) {
   write_file_atomically(path("taken.exr"), "not an image");

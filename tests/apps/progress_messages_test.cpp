@@ -19,21 +19,15 @@ std::size_t count_of(const std::string& text, const std::string& part) {
   return count;
 }
 
-class ProgressMessages : public ::testing::Test {
+class ProgressMessages : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new testing::TempDir;
+    CommandSuite::SetUpTestSuite();
     const auto result = testing::run_relume("synth -o '" + path("scene") +
                                             "' --size 16x12 --lights 20 --samples 1");
     ASSERT_EQ(result.exit_code, 0) << result.output;
   }
-  static void TearDownTestSuite() { delete folder_; }
-  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
-
-  static testing::TempDir* folder_;
 };
-
-testing::TempDir* ProgressMessages::folder_ = nullptr;
 
 TEST_F(ProgressMessages, CompressSaysEveryIterationAndShowsTheImagesLoading) {
   // RELUME_QUIET=0: the progress bars print (as plain lines, stderr is no terminal here).

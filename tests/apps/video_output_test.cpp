@@ -70,21 +70,14 @@ DecodedVideo decode(const std::string& path) {
   return video;
 }
 
-class VideoOutput : public ::testing::Test {
+class VideoOutput : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new testing::TempDir;
+    CommandSuite::SetUpTestSuite();
     run_or_fail("synth -o '" + path("scene") + "' --size 64x48 --lights 30 --samples 1");
     run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
                 "' --clusters 3 --terms 2 --residual 3");
     run_or_fail(sequence() + "-o '" + path("png/%d.png") + "'");
-  }
-  static void TearDownTestSuite() { delete folder_; }
-  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
-  static testing::CommandResult run_or_fail(const std::string& arguments) {
-    const auto result = testing::run_relume(arguments);
-    EXPECT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
-    return result;
   }
   static std::string sequence() {
     return "relight-sequence '" + path("scene.relume") +
@@ -103,11 +96,7 @@ class VideoOutput : public ::testing::Test {
     }
     return lowest;
   }
-
-  static testing::TempDir* folder_;
 };
-
-testing::TempDir* VideoOutput::folder_ = nullptr;
 
 TEST_F(VideoOutput, EveryFrameOfTheDefaultVideoIsThePngFrame) {
   const auto result = run_or_fail(sequence() + "--video '" + path("orbit.mp4") + "' --report '" +
@@ -152,7 +141,7 @@ TEST_F(VideoOutput, BadTargetsAreRefusedBeforeAnyWork) {
   EXPECT_EQ(again.exit_code, 1);
   EXPECT_NE(again.output.find("exists"), std::string::npos) << again.output;
   EXPECT_EQ(testing::run_relume(sequence()).exit_code, 1) << "neither -o nor --video";
-  for (const auto& entry : fs::directory_iterator(folder_->path()))
+  for (const auto& entry : fs::directory_iterator(path("")))
     EXPECT_EQ(entry.path().string().find("relume-partial"), std::string::npos) << entry.path();
 }
 
