@@ -25,8 +25,11 @@
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "field/mask_file.hpp"
+#include "field_input_options.hpp"
 #include "json_report.hpp"
 #include "model/reconstruct_field.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -51,15 +54,18 @@ struct CompressArguments {
   std::string psnr_mask;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
+  FieldInputOptions field_input;
   CompressionOptions options;
 };
 
 // The settings that shape the clustering, with the input: a checkpoint is only resumed when its
 // fingerprint is the same.
-std::string fingerprint(const std::string& input, const CompressionOptions& options) {
+std::string fingerprint(const std::string& input, const FieldInputOptions& field_input,
+                        const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;
   return nlohmann::json{
       {"input", fs::absolute(input).lexically_normal().string()},
+      {"field_input", describe_field_input(field_input)},
       {"clusters", clustering.clusters},
       {"terms", clustering.terms},
       {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
@@ -71,6 +77,30 @@ std::string fingerprint(const std::string& input, const CompressionOptions& opti
       .dump();
 }
 
+// One line for users, leading with the error over what is stored (paper Eq. 16 over the
+// functions inside the mask); with a mask, the whole frame's error follows, in which every
+// background function, not stored, counts as entirely lost.
+std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
+  char error[200];
+  const auto outside = report["field"]["outside_mask"].get<std::int64_t>();
+  if (outside == 0)
+    std::snprintf(error, sizeof error, "error %.5f", report["error_masked"].get<double>());
+  else
+    std::snprintf(error, sizeof error,
+                  "error %.5f over the stored object (whole frame %.5f: %lld background "
+                  "functions not stored)",
+                  report["error_masked"].get<double>(), report["error_all"].get<double>(),
+                  static_cast<long long>(outside));
+  char line[1024];
+  std::snprintf(line, sizeof line,
+                "compressed %s -> %s: %llu bytes (%.4f of float32), %s, %d clusters, %.1f s",
+                report["input"].get<std::string>().c_str(),
+                report["output"].get<std::string>().c_str(),
+                static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
+                report["ratio"].get<double>(), error, clusters, report["seconds"].get<double>());
+  return line;
+}
+
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -79,15 +109,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressionOptions options = base_options;
   if (opencl) options.clustering.assign = opencl->function();
 
-  FieldLoadOptions load;
-  load.threads = options.clustering.threads;
-  const ReflectanceField field = load_field(input, load);
+  const ReflectanceField field =
+      load_input_field(input, arguments.field_input, options.clustering.threads);
   const double load_seconds = seconds_since(start);
   note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
        field.height, field.channels, field.lights(), load_seconds);
 
   const fs::path checkpoint = output.string() + ".checkpoint";
-  const std::string print = fingerprint(input, options);
+  const std::string print = fingerprint(input, arguments.field_input, options);
   std::optional<ClusteringResume> resume;
   if (arguments.resume && fs::exists(checkpoint)) {
     resume = read_checkpoint(checkpoint, print);
@@ -95,8 +124,13 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
          resume->iterations.size());
   }
   CompressionStats stats;
-  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord&) {
+  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord& record) {
     write_checkpoint(checkpoint, print, model, stats.clustering.iterations);
+    note(
+        "compress: iteration %d: L1 objective %.6g, %zu of %zu functions changed cluster, %d "
+        "clusters, %.2f s",
+        record.iteration, record.objective, record.changed, model.assignment.size(),
+        record.clusters, record.seconds);
   };
 
   if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
@@ -156,7 +190,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
   run.psnr_white = arguments.psnr_white;
   if (!arguments.psnr_mask.empty())
-    run.psnr_mask = load_mask(arguments.psnr_mask, field.width, field.height);
+    run.psnr_mask = read_mask(arguments.psnr_mask, field.width, field.height);
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
   if (!target_choice.is_null()) report["target_error"] = target_choice;
@@ -181,12 +215,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
           {"sample_error_unquantized", quantization->error_unquantized},
           {"sample_error_quantized", quantization->error_quantized}};
   }
-  say("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
-      "%d clusters, %.1f s",
-      input.c_str(), output.c_str(),
-      static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-      report["ratio"].get<double>(), report["error_all"].get<double>(),
-      report["error_masked"].get<double>(), stats.clusters, run.total_seconds);
+  say("%s", summary_line(report, stats.clusters).c_str());
   for (const auto& [phase, seconds] : report["phases_seconds"].items())
     detail("compress: %-22s %8.2f s", phase.c_str(), seconds.get<double>());
   return report;
@@ -199,6 +228,28 @@ fs::path output_for(const fs::path& folder, const std::string& input) {
   const std::string stem =
       name.extension() == ".lp" ? name.stem().string() : name.filename().string();
   return folder / (stem + ".relume");
+}
+
+// The container of each input, checked before any work: none may exist (without -y), and two
+// inputs of one name (scans/a and other/a) would write the same OUT/a.relume: refused.
+std::vector<fs::path> output_paths(const CompressArguments& arguments) {
+  check_new_output(arguments.report);
+  const bool several = arguments.inputs.size() > 1;
+  if (several && fs::exists(arguments.output) && !fs::is_directory(arguments.output))
+    throw Error("with several inputs -o names a folder, but " + arguments.output + " is a file");
+  std::vector<fs::path> outputs;
+  for (const std::string& input : arguments.inputs) {
+    const fs::path output =
+        several ? output_for(arguments.output, input) : fs::path(arguments.output);
+    for (std::size_t j = 0; j < outputs.size(); ++j)
+      if (outputs[j] == output)
+        throw Error("inputs " + arguments.inputs[j] + " and " + input + " would both write " +
+                    output.string() + ": compress them into different folders");
+    if (!(arguments.resume && fs::exists(output.string() + ".checkpoint")))
+      check_new_output(output);
+    outputs.push_back(output);
+  }
+  return outputs;
 }
 
 void run_compress(CompressArguments& arguments) {
@@ -219,6 +270,8 @@ void run_compress(CompressArguments& arguments) {
     throw Error("--target-error must be a relative error > 0, got " +
                 std::to_string(arguments.target_error));
 
+  const std::vector<fs::path> outputs = output_paths(arguments);
+
   std::unique_ptr<OpenClAssigner> opencl;
   if (arguments.assign == "opencl")
     opencl = make_opencl_assigner(arguments.device, options.clustering);
@@ -231,9 +284,9 @@ void run_compress(CompressArguments& arguments) {
   if (several) fs::create_directories(arguments.output);
   nlohmann::ordered_json reports = nlohmann::ordered_json::array();
   nlohmann::ordered_json failures = nlohmann::ordered_json::array();
-  for (const std::string& input : arguments.inputs) {
-    const fs::path output =
-        several ? output_for(arguments.output, input) : fs::path(arguments.output);
+  for (std::size_t i = 0; i < arguments.inputs.size(); ++i) {
+    const std::string& input = arguments.inputs[i];
+    const fs::path& output = outputs[i];
     if (!several) {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
       continue;
@@ -363,6 +416,7 @@ const CommandRegistration registration{
                           "mask)");
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");
+      add_field_input_options(*command, arguments->field_input);
       command->callback([arguments] { run_compress(*arguments); });
     }};
 

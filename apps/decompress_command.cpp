@@ -10,6 +10,7 @@
 #include "container/container.hpp"
 #include "core/console.hpp"
 #include "model/reconstruct_field.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -21,6 +22,7 @@ struct DecompressOptions {
 };
 
 void run_decompress(const DecompressOptions& options) {
+  check_output_folder(options.output);
   const CompressedField compressed = read_container(options.input);
   const ReflectanceField field = reconstruct_field(compressed, options.residual);
   write_field_folder(options.output, field);
@@ -42,8 +44,8 @@ const CommandRegistration registration{
       command->add_option("input", options->input, "The .relume container")->required();
       command
           ->add_option("-o,--output", options->output,
-                       "Output folder (created if missing; existing files of the same names are "
-                       "replaced)")
+                       "Output folder (created if missing; a non-empty one is refused unless "
+                       "-y/--overwrite, which replaces files of the same names)")
           ->required();
       command
           ->add_option("--residual", options->residual,

@@ -11,6 +11,7 @@
 #include "core/progress.hpp"
 #include "field/npy.hpp"
 #include "l1/factorization.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -31,6 +32,8 @@ struct FactorCommandOptions {
 void run_factor(FactorCommandOptions options) {
   options.factorization.l1.method = parse_l1_method(options.solver);
   options.factorization.init = parse_factorization_init(options.init);
+  for (const char* suffix : {"_W.npy", "_F.npy", "_E.npy"})
+    check_new_output(options.output_prefix + suffix);
   const NpyMatrix input = read_npy_matrix(options.input);
   const Eigen::MatrixXd& R = input.values;
   // float32 input is already rounded to ~6e-8 of each value: smaller residuals are that rounding.

@@ -17,6 +17,7 @@
 #include "command_suggestion.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
+#include "output_paths.hpp"
 
 namespace {
 
@@ -85,6 +86,10 @@ int main(int argc, char** argv) {
          },
          "Also print settings as resolved and timings")
       ->excludes(quiet);
+  app.add_flag_callback(
+      "-y,--overwrite", [] { relume::allow_overwrite(); },
+      "Replace existing output files and write into non-empty output folders "
+      "(without it, a command refuses them before it starts work)");
   for (const auto& setup : relume::registered_commands()) setup(app);
 
   const std::string word = first_word(argc, argv);

@@ -18,6 +18,10 @@ void add_renderer_options(CLI::App& command, RendererOptions& options) {
       ->capture_default_str();
 }
 
+void check_renderer_options(const RendererOptions& options) {
+  if (options.residual != "all") parse_residual_budget(options.residual);
+}
+
 int residual_cap(const RendererOptions& options, int lights) {
   if (options.residual == "all") return full_residual;
   return parse_residual_budget(options.residual).entries_for(lights);

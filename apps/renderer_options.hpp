@@ -15,6 +15,9 @@ struct RendererOptions {
 
 void add_renderer_options(CLI::App& command, RendererOptions& options);
 
+// Throws Error naming a malformed --residual value; commands call it before loading anything.
+void check_renderer_options(const RendererOptions& options);
+
 // The residual cap of `options.residual` for a field of `lights` lights (full_residual for "all").
 // Throws Error naming a malformed value.
 int residual_cap(const RendererOptions& options, int lights);

@@ -12,6 +12,7 @@
 #include "command_registry.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
+#include "output_paths.hpp"
 #include "synth/synthetic_scene.hpp"
 
 namespace relume {
@@ -44,6 +45,7 @@ void run_synth(const SynthArguments& arguments) {
   if (!arguments.size.empty()) parse_size(arguments.size, options);
   if (arguments.hemisphere) options.layout = LightLayout::hemisphere;
   validate_synth_options(options);
+  check_output_folder(arguments.output);
 
   ProgressReporter progress("synth: rendering", std::uint64_t(options.height));
   const ReflectanceField field = render_synthetic_field(options, &progress);

@@ -289,7 +289,7 @@ TEST(CompressCommand, OpenClAssignmentIsTheDefaultAndAgreesWithTheCpuPath) {
   std::map<std::string, nlohmann::json> reports;
   for (const std::string assign : {"", "--assign cpu"}) {
     const auto result =
-        testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
+        testing::run_relume("-y compress '" + bear + "' -o '" + (dir / "b.relume").string() +
                             "' --clusters 16 --terms 3 --residual 4 --iterations 2 --threads 2 " +
                             assign + " --report '" + (dir / "b.json").string() + "'");
     ASSERT_EQ(result.exit_code, 0) << result.output;

@@ -178,8 +178,9 @@ TEST(FactorCommand, RoundTripsNpyFilesInTheInputDtype) {
   for (NpyDtype dtype : {NpyDtype::float32, NpyDtype::float64}) {
     const Eigen::MatrixXd R = dtype == NpyDtype::float32 ? p.R.cast<float>().cast<double>() : p.R;
     write_npy_matrix(dir / "r.npy", R, dtype);
-    const auto result = testing::run_relume("factor '" + (dir / "r.npy").string() + "' -t 2 -o '" +
-                                            (dir / "out").string() + "' --threads 2");
+    const auto result =
+        testing::run_relume("-y factor '" + (dir / "r.npy").string() + "' -t 2 -o '" +
+                            (dir / "out").string() + "' --threads 2");
     ASSERT_EQ(result.exit_code, 0) << result.output;
     EXPECT_NE(result.output.find("iteration 1: L1 objective"), std::string::npos) << result.output;
     const NpyMatrix W = read_npy_matrix(dir / "out_W.npy");
