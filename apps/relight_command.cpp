@@ -9,6 +9,7 @@
 
 #include "command_registry.hpp"
 #include "container/container.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "light_source_options.hpp"
 #include "renderer_options.hpp"
@@ -29,6 +30,7 @@ struct RelightOptions {
 void relight_container(const RelightOptions& options) {
   const CompressedField field = read_container(options.input);
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
+  check_relight_memory(field, 1);
   Relighter renderer(field, options.renderer.relighter);
   const int cap = residual_cap(options.renderer, field.lights);
   const Image image = renderer.relight(lights, cap);
@@ -39,6 +41,8 @@ void relight_container(const RelightOptions& options) {
 }
 
 void run_relight(const RelightOptions& options) {
+  check_output_file_location(options.output);
+  check_renderer_options(options.renderer);
   if (std::filesystem::path(options.input).extension() == ".relume") {
     relight_container(options);
     return;

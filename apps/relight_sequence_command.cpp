@@ -14,6 +14,7 @@
 
 #include "command_registry.hpp"
 #include "container/container.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
 #include "image/image_difference.hpp"
@@ -101,11 +102,16 @@ std::vector<LightRgb> frame_lights(const SequenceOptions& options, const Compres
 void run_sequence(const SequenceOptions& options) {
   check_pattern(options.output_pattern);
   if (options.batch < 1) throw Error("--batch must be at least 1");
+  check_renderer_options(options.renderer);
+  const fs::path folder = fs::path(frame_path(options.output_pattern, 0)).parent_path();
+  if (!folder.empty()) check_output_folder_location(folder);
+  if (!options.report.empty()) check_output_file_location(options.report);
   const CompressedField field = read_container(options.input);
   const std::vector<LightRgb> lights = frame_lights(options, field);
+  check_relight_memory(field, std::min<std::size_t>(std::size_t(options.batch), lights.size()) *
+                                  (options.compare ? 2 : 1));
   Relighter renderer(field, options.renderer.relighter);
   const int cap = residual_cap(options.renderer, field.lights);
-  const fs::path folder = fs::path(frame_path(options.output_pattern, 0)).parent_path();
   if (!folder.empty()) fs::create_directories(folder);
 
   using clock = std::chrono::steady_clock;

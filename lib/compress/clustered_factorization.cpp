@@ -15,13 +15,19 @@ namespace relume {
 namespace {
 
 void validate_options(const ReflectanceField& field, const CompressionOptions& options) {
+  validate_compression_options(options);
+  if (options.clustering.terms >= field.lights())
+    throw Error("terms per cluster (" + std::to_string(options.clustering.terms) +
+                ") must be fewer than the lights (" + std::to_string(field.lights()) + ")");
+}
+
+}  // namespace
+
+void validate_compression_options(const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;
   if (clustering.terms < 1 || clustering.terms > max_cluster_terms)
     throw Error("terms per cluster must be in [1, " + std::to_string(max_cluster_terms) +
                 "], got " + std::to_string(clustering.terms));
-  if (clustering.terms >= field.lights())
-    throw Error("terms per cluster (" + std::to_string(clustering.terms) +
-                ") must be fewer than the lights (" + std::to_string(field.lights()) + ")");
   if (clustering.clusters < 1)
     throw Error("clusters must be >= 1, got " + std::to_string(clustering.clusters));
   if (clustering.candidates < 1)
@@ -36,9 +42,8 @@ void validate_options(const ReflectanceField& field, const CompressionOptions& o
     throw Error("residual threshold must be a finite value >= 0, got " +
                 std::to_string(options.residual_threshold));
   validate_size_limits(clustering.sizes, clustering.terms);
+  resolve_thread_count(clustering.threads);
 }
-
-}  // namespace
 
 CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
                                        const ClusterModel& model, BasisTransform transform,

@@ -150,6 +150,14 @@ std::string decode_section(std::string_view coded, const SectionCoding& coding,
                   std::to_string(raw_bytes));
     return std::string(coded);
   }
+  // A zstd block of at most 128 KiB takes at least 4 coded bytes (a 3-byte header and one byte
+  // of an RLE block), so no valid frame decodes to more than 32768 times its size: a table that
+  // claims more is refused before anything of that size is allocated.
+  constexpr std::uint64_t max_zstd_ratio = (128u << 10) / 4;
+  if (raw_bytes > std::uint64_t(coded.size()) * max_zstd_ratio)
+    throw Error(where + ": " + std::to_string(coded.size()) + " zstd-coded bytes cannot decode to " +
+                std::to_string(raw_bytes) + " bytes as the section table says (at most " +
+                std::to_string(max_zstd_ratio) + " times as many): the section is corrupt");
   const unsigned long long content = ZSTD_getFrameContentSize(coded.data(), coded.size());
   if (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN)
     throw Error(where + ": is not a complete zstd frame (corrupt or truncated)");

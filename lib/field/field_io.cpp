@@ -7,7 +7,9 @@
 #include <relume/field.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
+#include "core/text_numbers.hpp"
 #include "field/light_file.hpp"
 
 namespace relume {
@@ -52,8 +54,8 @@ std::vector<fs::path> read_filenames(const fs::path& folder) {
   if (fs::exists(list)) {
     std::ifstream in(list);
     for (std::string line; std::getline(in, line);) {
-      line.erase(line.find_last_not_of(" \t\r") + 1);
-      if (!line.empty()) images.push_back(folder / line);
+      const std::string_view name = trim_blanks(line);
+      if (!name.empty()) images.push_back(folder / std::string(name));
     }
     if (images.empty()) throw Error(list.string() + " names no images");
     return images;
@@ -94,10 +96,11 @@ FieldSource describe_folder(const fs::path& folder) {
     source.intensities = read_rgb_rows(folder / "light_intensities.txt", "light intensity");
     for (Eigen::Index i = 0; i < source.intensities.rows(); ++i)
       for (int c = 0; c < 3; ++c)
-        if (!(source.intensities(i, c) > 0))
+        if (!(source.intensities(i, c) > 0) || !std::isfinite(1.0f / source.intensities(i, c)))
           throw Error((folder / "light_intensities.txt").string() + ": row " +
                       std::to_string(i + 1) + " has intensity " +
-                      std::to_string(source.intensities(i, c)) + " (must be positive)");
+                      std::to_string(source.intensities(i, c)) +
+                      " (must be positive, and at least 3e-39 so that images can be divided by it)");
   }
   if (fs::exists(folder / "mask.png")) source.mask = folder / "mask.png";
   return source;
@@ -161,6 +164,11 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
   field.height = first.height;
   field.channels = field_channels(first.channels);
   const int lights = static_cast<int>(source.images.size());
+  check_memory_need(std::uint64_t(field.pixels()) * std::uint64_t(field.channels) *
+                        std::uint64_t(lights) * sizeof(float),
+                    "the field " + path.string() + " (" + std::to_string(field.width) + "x" +
+                        std::to_string(field.height) + ", " + std::to_string(field.channels) +
+                        " channels, " + std::to_string(lights) + " lights, float32)");
   field.values.resize(field.pixels() * field.channels, lights);
   field.directions = source.directions;
   field.intensities = source.intensities.rows() ? source.intensities : LightRgb::Ones(lights, 3);
@@ -180,8 +188,15 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
     float scale[3];
     for (int c = 0; c < field.channels; ++c) scale[c] = 1.0f / channel_intensity(field, i, c);
     for (std::int64_t p = 0; p < field.pixels(); ++p)
-      for (int c = 0; c < field.channels; ++c)
-        field.values(p * field.channels + c, i) = image.pixels[p * image.channels + c] * scale[c];
+      for (int c = 0; c < field.channels; ++c) {
+        const float value = image.pixels[p * image.channels + c] * scale[c];
+        if (!std::isfinite(value))
+          throw Error("image " + source.images[i].string() + " divided by its light intensity " +
+                      std::to_string(channel_intensity(field, int(i), c)) +
+                      " overflows float32 at pixel (" + std::to_string(p % field.width) + ", " +
+                      std::to_string(p / field.width) + ") channel " + std::to_string(c));
+        field.values(p * field.channels + c, i) = value;
+      }
   });
 
   field.mask = source.mask.empty() ? std::vector<std::uint8_t>(field.pixels(), 1)
