@@ -35,10 +35,19 @@ std::vector<std::string> command_names(const CLI::App& app) {
   return names;
 }
 
-// The first argument that is not an option: the command's name, or "" when there is none.
+// The global option that takes a value (its value is not the command's name).
+constexpr const char* memory_limit_option = "--memory-limit";
+
+// The first argument that is not an option or a global option's value: the command's name, or ""
+// when there is none.
 std::string first_word(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == memory_limit_option) {
+      ++i;
+      continue;
+    }
     if (argv[i][0] != '-') return argv[i];
+  }
   return "";
 }
 
@@ -126,7 +135,7 @@ int main(int argc, char** argv) {
          "Also print settings as resolved and timings")
       ->excludes(quiet);
   app.add_option_function<std::string>(
-      "--memory-limit",
+      memory_limit_option,
       [](const std::string& size) {
         try {
           relume::set_memory_limit(relume::parse_byte_size(size));

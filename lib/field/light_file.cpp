@@ -26,7 +26,8 @@ std::string where(const fs::path& path, int line) {
 double parse_number(std::string_view token, const fs::path& path, int line,
                     const std::string& what) {
   const ParsedNumber parsed = parse_number_token(token, /*decimal_comma=*/true);
-  const std::string quoted = "'" + std::string(token) + "'";
+  std::string quoted = "'";
+  quoted.append(token).append("'");
   if (parsed.status == ParsedNumber::Status::not_a_number)
     throw Error(where(path, line) + ": " + what + " " + quoted + " is not a number");
   if (parsed.status == ParsedNumber::Status::not_finite)

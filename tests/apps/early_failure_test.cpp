@@ -78,7 +78,7 @@ TEST_F(EarlyFailure, SizesAndThreadsHaveSaneBounds) {
 TEST_F(EarlyFailure, FactorRefusesMoreTermsThanTheMatrixHas) {
   // A 3 x 4 float64 .npy matrix.
   std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 4), }";
-  header.append(64 - 10 - header.size() - 1, ' ');
+  header.append((64 - (10 + header.size() + 1) % 64) % 64, ' ');
   header += '\n';
   std::string bytes = std::string("\x93NUMPY\x01\x00", 8) + char(header.size()) + '\0' + header;
   for (int i = 0; i < 12; ++i) {

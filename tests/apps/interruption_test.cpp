@@ -3,6 +3,7 @@
 // moment the container's temporary file is created, seen with inotify). Each run must exit 128 +
 // the signal, leave no temporary file, and either a complete container or a valid checkpoint from
 // which --resume writes the same bytes as an uninterrupted run.
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/inotify.h>

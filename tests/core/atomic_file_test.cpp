@@ -129,7 +129,8 @@ TEST(AtomicFileFaults, FullDiskIsAnErrorNamingTheTarget) {
   EXPECT_EXIT(
       {
         ::signal(SIGXFSZ, SIG_IGN);
-        const rlimit limit{64 << 10, 64 << 10};
+        rlimit limit;
+        limit.rlim_cur = limit.rlim_max = 64 << 10;
         ::setrlimit(RLIMIT_FSIZE, &limit);
         try {
           write_file_atomically(target, std::string(1 << 20, 'x'));
