@@ -158,8 +158,14 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
     for (const auto& record : resume->iterations) done += record.iteration > 0;
     const int cap =
         options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
-    iterate_clusters(prepared.rows, model, clustering, std::max(0, cap - done), stats.clustering,
-                     hook);
+    // A checkpoint written after the iteration that settled is the last one: the uninterrupted
+    // run stopped there, so the resumed one iterates no more (else it would write another model).
+    const bool settled = options.multires_levels == 0 && done > 0 &&
+                         double(resume->iterations.back().changed) <=
+                             clustering.settle_fraction * double(prepared.functions.size());
+    iterate_clusters(prepared.rows, model, clustering, settled ? 0 : std::max(0, cap - done),
+                     stats.clustering, hook);
+    if (settled) stats.clustering.settled = true;
   } else if (options.multires_levels > 0) {
     stats.multires.emplace();
     model =

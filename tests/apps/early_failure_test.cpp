@@ -15,7 +15,10 @@ using testing::run_relume;
 
 class EarlyFailure : public ::testing::Test {
  protected:
-  std::string at(const std::string& name) const { return "'" + (dir_ / name).string() + "'"; }
+  std::string at(const std::string& name) const {
+    std::string quoted = "'";
+    return quoted.append((dir_ / name).string()).append("'");
+  }
   testing::TempDir dir_;
 };
 

@@ -111,16 +111,21 @@ TEST(NumericalExtremes, OneLightIsRefusedOnePixelAndTermsLightsMinusOneWork) {
 
 TEST(NumericalExtremes, SunOf1e6GivesFiniteLightAndImages) {
   SkyOptions sky;
-  sky.width = 128;
+  sky.width = 512;  // pixels of 0.7 degrees: the 2-degree sun covers several
   sky.sun_radiance = 1e6;
   const EnvironmentMap map = make_environment_map(render_sky(sky), EnvironmentLayout::latlong,
                                                   "sun 1e6");
-  const ReflectanceField field = make_field(8, 6, 40, [](std::int64_t p, int i) {
+  ReflectanceField field = make_field(8, 6, 40, [](std::int64_t p, int i) {
     return 0.02f * float((p * 7 + i * 3) % 13);
   });
+  // A light towards the sun (elevation 35, azimuth 30 degrees), so that its energy is not
+  // "outside the light set".
+  const double e = 35 * M_PI / 180, a = 30 * M_PI / 180;
+  field.directions.row(0) << float(std::cos(e) * std::sin(a)), float(std::sin(e)),
+      float(-std::cos(e) * std::cos(a));
   const LightVector light = integrate_light_vector(map, field.directions, 0, 2);
   ASSERT_TRUE(light.rgb.allFinite());
-  EXPECT_GT(light.rgb.maxCoeff(), 10.0f);  // the sun's energy arrived
+  EXPECT_GT(light.rgb.maxCoeff(), 1000.0f);  // the sun's energy (about 3800) arrived
   expect_all_finite(relight_field(field, light.rgb, 2));
   const CompressedField compressed = compress(field, small_options(2, 3));
   expect_all_finite(relight_compressed_reference(compressed, light.rgb));
