@@ -92,7 +92,8 @@ std::string failure_message(const std::exception& e) {
   if (dynamic_cast<const std::bad_alloc*>(&e)) {
     const relume::MemoryBudget budget = relume::memory_budget();
     return "error: out of memory (" + relume::byte_size_text(budget.bytes) + " available now, " +
-           budget.source + "): the input is too large for this machine, or --memory-limit is set "
+           budget.source +
+           "): the input is too large for this machine, or --memory-limit is set "
            "too high";
   }
   return std::string("internal error: ") + e.what();

@@ -30,10 +30,9 @@ void check_relight_memory(const CompressedField& field, std::size_t images) {
   const std::uint64_t model = std::uint64_t(field.weights.size()) * 4 + field.bases.size() * 4 +
                               field.residual.nonzeros() * 8 + field.stored_rows() * 12;
   const std::uint64_t image = std::uint64_t(field.width) * std::uint64_t(field.height) * 3 * 4;
-  check_memory_need(model + images * image,
-                    "relighting " + std::to_string(field.width) + "x" +
-                        std::to_string(field.height) + " pixels (" + std::to_string(images) +
-                        " images at once)");
+  check_memory_need(model + images * image, "relighting " + std::to_string(field.width) + "x" +
+                                                std::to_string(field.height) + " pixels (" +
+                                                std::to_string(images) + " images at once)");
 }
 
 int residual_cap(const RendererOptions& options, int lights) {

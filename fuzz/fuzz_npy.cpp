@@ -8,7 +8,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
-  relume::fuzz::expect_only_relume_errors(
-      [&] { relume::parse_npy_matrix(bytes, "fuzz.npy"); });
+  relume::fuzz::expect_only_relume_errors([&] { relume::parse_npy_matrix(bytes, "fuzz.npy"); });
   return 0;
 }

@@ -39,8 +39,8 @@ void expect_only_relume_errors(const std::function<void()>& read) {
 
 const fs::path& scratch_folder() {
   static const fs::path folder = [] {
-    const fs::path base = fs::is_directory("/dev/shm") ? fs::path("/dev/shm")
-                                                        : fs::temp_directory_path();
+    const fs::path base =
+        fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
     const fs::path path = base / ("relume-fuzz-" + std::to_string(::getpid()));
     fs::create_directories(path);
     return path;

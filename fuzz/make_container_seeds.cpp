@@ -57,8 +57,9 @@ int main(int argc, char** argv) {
     relume::ContainerOptions options;
     options.weights = options.residual = relume::ValuePrecision::quantized;
     options.entropy_coding = entropy;
-    relume::write_container(containers / (entropy ? "zstd_quantized.relume" : "raw_quantized.relume"),
-                            quantized, options);
+    relume::write_container(
+        containers / (entropy ? "zstd_quantized.relume" : "raw_quantized.relume"), quantized,
+        options);
   }
   const fs::path npy = corpus / "npy";
   fs::create_directories(npy);

@@ -155,9 +155,10 @@ std::string decode_section(std::string_view coded, const SectionCoding& coding,
   // claims more is refused before anything of that size is allocated.
   constexpr std::uint64_t max_zstd_ratio = (128u << 10) / 4;
   if (raw_bytes > std::uint64_t(coded.size()) * max_zstd_ratio)
-    throw Error(where + ": " + std::to_string(coded.size()) + " zstd-coded bytes cannot decode to " +
-                std::to_string(raw_bytes) + " bytes as the section table says (at most " +
-                std::to_string(max_zstd_ratio) + " times as many): the section is corrupt");
+    throw Error(where + ": " + std::to_string(coded.size()) +
+                " zstd-coded bytes cannot decode to " + std::to_string(raw_bytes) +
+                " bytes as the section table says (at most " + std::to_string(max_zstd_ratio) +
+                " times as many): the section is corrupt");
   const unsigned long long content = ZSTD_getFrameContentSize(coded.data(), coded.size());
   if (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN)
     throw Error(where + ": is not a complete zstd frame (corrupt or truncated)");

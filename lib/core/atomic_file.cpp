@@ -49,8 +49,7 @@ void check_output_file_location(const fs::path& target) {
   if (!fs::is_directory(parent))
     throw Error("cannot write " + target.string() + ": folder " + parent.string() +
                 " does not exist");
-  if (fs::is_directory(target))
-    throw Error("cannot write " + target.string() + ": it is a folder");
+  if (fs::is_directory(target)) throw Error("cannot write " + target.string() + ": it is a folder");
   if (!writable_folder(parent))
     throw Error("cannot write " + target.string() + ": folder " + parent.string() +
                 " is not writable");

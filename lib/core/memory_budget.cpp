@@ -100,8 +100,8 @@ void check_memory_need(std::uint64_t bytes, const std::string& what) {
 
 std::uint64_t parse_byte_size(const std::string& text) {
   std::size_t end = 0;
-  while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) ||
-                               text[end] == '.'))
+  while (end < text.size() &&
+         (std::isdigit(static_cast<unsigned char>(text[end])) || text[end] == '.'))
     ++end;
   const auto number = parse_finite_double(text.substr(0, end));
   std::string unit = text.substr(end);

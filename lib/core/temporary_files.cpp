@@ -53,8 +53,8 @@ bool process_runs(pid_t pid) { return ::kill(pid, 0) == 0 || errno != ESRCH; }
 fs::path temporary_path_for(const fs::path& target) {
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   // Keep the target's name last: image writers choose the format from the extension.
-  return parent / (std::string(prefix) + std::to_string(::getpid()) + "-" +
-                   target.filename().string());
+  return parent /
+         (std::string(prefix) + std::to_string(::getpid()) + "-" + target.filename().string());
 }
 
 TemporaryPathRegistration::TemporaryPathRegistration(const fs::path& path, Kind kind) {

@@ -44,8 +44,8 @@ ParsedNumber parse_number_token(std::string_view token, bool decimal_comma) {
     // Underflow (1e-400) rounds to zero; overflow (1e400) is not a finite number.
     const std::string_view digits(first, std::size_t(last - first));
     const auto e = digits.find_first_of("eE");
-    const bool negative_exponent = e != std::string_view::npos && e + 1 < digits.size() &&
-                                   digits[e + 1] == '-';
+    const bool negative_exponent =
+        e != std::string_view::npos && e + 1 < digits.size() && digits[e + 1] == '-';
     if (negative_exponent) return {ParsedNumber::Status::number, 0.0};
     return {ParsedNumber::Status::not_finite, 0.0};
   }

@@ -97,10 +97,10 @@ FieldSource describe_folder(const fs::path& folder) {
     for (Eigen::Index i = 0; i < source.intensities.rows(); ++i)
       for (int c = 0; c < 3; ++c)
         if (!(source.intensities(i, c) > 0) || !std::isfinite(1.0f / source.intensities(i, c)))
-          throw Error((folder / "light_intensities.txt").string() + ": row " +
-                      std::to_string(i + 1) + " has intensity " +
-                      std::to_string(source.intensities(i, c)) +
-                      " (must be positive, and at least 3e-39 so that images can be divided by it)");
+          throw Error(
+              (folder / "light_intensities.txt").string() + ": row " + std::to_string(i + 1) +
+              " has intensity " + std::to_string(source.intensities(i, c)) +
+              " (must be positive, and at least 3e-39 so that images can be divided by it)");
   }
   if (fs::exists(folder / "mask.png")) source.mask = folder / "mask.png";
   return source;

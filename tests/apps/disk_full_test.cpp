@@ -59,13 +59,13 @@ class DiskFull : public ::testing::Test {
   static void SetUpTestSuite() {
     data_ = new testing::TempDir;
     const std::string scene = (*data_ / "scene").string();
-    ASSERT_EQ(run_relume("-q synth -o '" + scene + "' --size 48x40 --lights 12 --samples 1")
-                  .exit_code,
-              0);
-    const auto run = run_relume("-q compress '" + scene + "' -o '" +
-                                (*data_ / "scene.relume").string() +
-                                "' --clusters 4 --terms 2 --assign cpu --weights-precision "
-                                "float32 --residual-precision float32 --bases-precision float32");
+    ASSERT_EQ(
+        run_relume("-q synth -o '" + scene + "' --size 48x40 --lights 12 --samples 1").exit_code,
+        0);
+    const auto run =
+        run_relume("-q compress '" + scene + "' -o '" + (*data_ / "scene.relume").string() +
+                   "' --clusters 4 --terms 2 --assign cpu --weights-precision "
+                   "float32 --residual-precision float32 --bases-precision float32");
     ASSERT_EQ(run.exit_code, 0) << run.output;
   }
   static void TearDownTestSuite() { delete data_; }
@@ -87,8 +87,8 @@ TEST_F(DiskFull, Synth) {
 }
 
 TEST_F(DiskFull, Decompress) {
-  const auto run = relume_on(disk_, "decompress '" + (*data_ / "scene.relume").string() +
-                                        "' -o '" + (disk_.folder() / "field").string() + "'");
+  const auto run = relume_on(disk_, "decompress '" + (*data_ / "scene.relume").string() + "' -o '" +
+                                        (disk_.folder() / "field").string() + "'");
   EXPECT_EQ(run.exit_code, 1) << disk_.how() << ": " << run.output;
   EXPECT_THAT(run.output, out_of_space);
   EXPECT_FALSE(fs::exists(disk_.folder() / "field")) << "a partial field folder is exposed";
@@ -98,8 +98,8 @@ TEST_F(DiskFull, Decompress) {
 TEST_F(DiskFull, Compress) {
   // A bigger field than the disk holds as a float32 container.
   const std::string scene = (dir_ / "big").string();
-  ASSERT_EQ(run_relume("-q synth -o '" + scene + "' --size 96x96 --lights 24 --samples 1").exit_code,
-            0);
+  ASSERT_EQ(
+      run_relume("-q synth -o '" + scene + "' --size 96x96 --lights 24 --samples 1").exit_code, 0);
   const auto run = relume_on(
       disk_, "compress '" + scene + "' -o '" + (disk_.folder() / "big.relume").string() +
                  "' --clusters 4 --terms 2 --residual 8 --assign cpu --weights-precision float32 "
@@ -114,10 +114,10 @@ TEST_F(DiskFull, Compress) {
 TEST_F(DiskFull, RelightSequence) {
   const std::string sky = (dir_ / "sky.exr").string();
   ASSERT_EQ(run_relume("-q sky -o '" + sky + "' --width 64").exit_code, 0);
-  const auto frames = relume_on(disk_, "relight-sequence '" + (*data_ / "scene.relume").string() +
-                                           "' --env '" + sky + "' --frames 40 -o '" +
-                                           (disk_.folder() / "frames" / "%03d.exr").string() +
-                                           "' --cpu");
+  const auto frames =
+      relume_on(disk_, "relight-sequence '" + (*data_ / "scene.relume").string() + "' --env '" +
+                           sky + "' --frames 40 -o '" +
+                           (disk_.folder() / "frames" / "%03d.exr").string() + "' --cpu");
   EXPECT_EQ(frames.exit_code, 1) << disk_.how() << ": " << frames.output;
   EXPECT_THAT(frames.output, out_of_space);
   EXPECT_THAT(temporaries(disk_.folder()), ::testing::IsEmpty());

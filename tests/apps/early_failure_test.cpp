@@ -34,7 +34,8 @@ TEST_F(EarlyFailure, CompressChecksOptionsAndOutputsBeforeLoading) {
         Case{"--weights-precision float8", "unknown precision \"float8\""},
         Case{"--bases-precision half", "--bases-precision must be 'quantized' or 'float32'"},
         Case{"--assign opencl --device no-such-device", "no-such-device"}}) {
-    const auto run = run_relume("compress " + missing + " -o " + at("out.relume") + " " + c.options);
+    const auto run =
+        run_relume("compress " + missing + " -o " + at("out.relume") + " " + c.options);
     EXPECT_EQ(run.exit_code, 1) << c.options;
     EXPECT_THAT(run.output, HasSubstr(c.message)) << c.options;
     EXPECT_THAT(run.output, Not(HasSubstr("not found"))) << c.options;
@@ -45,14 +46,14 @@ TEST_F(EarlyFailure, CompressChecksOptionsAndOutputsBeforeLoading) {
   EXPECT_THAT(run.output, Not(HasSubstr("checkpoint")));
   run = run_relume("compress " + missing + " -o " + at("no/such/folder/out.relume") +
                    " --assign cpu");
-  EXPECT_THAT(run.output, HasSubstr("folder " + (dir_ / "no/such/folder").string() +
-                                    " does not exist"));
+  EXPECT_THAT(run.output,
+              HasSubstr("folder " + (dir_ / "no/such/folder").string() + " does not exist"));
   EXPECT_THAT(run.output, Not(HasSubstr("checkpoint")));
 }
 
 TEST_F(EarlyFailure, RelightChecksTheDeviceAndOutputBeforeReading) {
-  auto run = run_relume("relight " + at("missing.relume") + " --lights x.txt -o " +
-                        at("out.exr") + " --device no-such-device");
+  auto run = run_relume("relight " + at("missing.relume") + " --lights x.txt -o " + at("out.exr") +
+                        " --device no-such-device");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_THAT(run.output, HasSubstr("no-such-device"));
   std::ofstream(dir_ / "no") << "a file";
@@ -110,8 +111,8 @@ TEST_F(EarlyFailure, HostileLightFilesAreErrorsNotInternalErrors) {
   std::ofstream(dir_ / "huge.lp") << "9223372036854775808\na.png 0 0 1\n";
   std::ofstream(dir_ / "tabs.lp") << "1\n\v\n";
   for (const char* name : {"huge.lp", "tabs.lp"}) {
-    const auto run = run_relume(std::string("compress ") + at(name) + " -o " + at("o.relume") +
-                                " --assign cpu");
+    const auto run =
+        run_relume(std::string("compress ") + at(name) + " -o " + at("o.relume") + " --assign cpu");
     EXPECT_EQ(run.exit_code, 1) << name;
     EXPECT_THAT(run.output, HasSubstr("relume: error: ")) << name;
     EXPECT_THAT(run.output, Not(HasSubstr("internal error"))) << name;

@@ -25,14 +25,15 @@ namespace {
 namespace fs = std::filesystem;
 using testing::run_relume;
 
-const std::vector<std::string> compress_options = {
-    "--clusters", "12", "--terms", "3", "--iterations", "25", "--assign",
-    "cpu",        "--threads", "2", "--residual", "3"};
+const std::vector<std::string> compress_options = {"--clusters",   "12", "--terms",    "3",
+                                                   "--iterations", "25", "--assign",   "cpu",
+                                                   "--threads",    "2",  "--residual", "3"};
 
 // Starts `relume compress scene -o out [--resume]` in `dir`, its output in dir/log.txt.
 pid_t start_compress(const testing::TempDir& dir, bool resume) {
-  std::vector<std::string> args = {RELUME_BINARY, "-q", "compress", (dir / "scene").string(),
-                                   "-o", (dir / "out.relume").string()};
+  std::vector<std::string> args = {RELUME_BINARY, "-q",
+                                   "compress",    (dir / "scene").string(),
+                                   "-o",          (dir / "out.relume").string()};
   args.insert(args.end(), compress_options.begin(), compress_options.end());
   if (resume) args.push_back("--resume");
   std::vector<char*> argv;
@@ -150,9 +151,7 @@ std::string* CompressInterruption::reference_ = nullptr;
 TEST_F(CompressInterruption, SigintDuringClustering) { interrupt_during_clustering(SIGINT); }
 TEST_F(CompressInterruption, SigtermDuringClustering) { interrupt_during_clustering(SIGTERM); }
 TEST_F(CompressInterruption, SigintDuringTheFinalWrite) { interrupt_during_final_write(SIGINT); }
-TEST_F(CompressInterruption, SigtermDuringTheFinalWrite) {
-  interrupt_during_final_write(SIGTERM);
-}
+TEST_F(CompressInterruption, SigtermDuringTheFinalWrite) { interrupt_during_final_write(SIGTERM); }
 
 }  // namespace
 }  // namespace relume

@@ -76,9 +76,8 @@ CompressedField round_trip(const ReflectanceField& field, const CompressOptions&
 TEST(NumericalExtremes, ValuesFrom1eMinus8To1e8InOneImage) {
   std::mt19937 random(3);
   std::uniform_real_distribution<double> exponent(-8, 8);
-  const ReflectanceField field = make_field(16, 12, 24, [&](std::int64_t, int) {
-    return float(std::pow(10.0, exponent(random)));
-  });
+  const ReflectanceField field = make_field(
+      16, 12, 24, [&](std::int64_t, int) { return float(std::pow(10.0, exponent(random))); });
   const CompressedField read = round_trip(field, small_options(4, 3));
   EXPECT_GT(read.stored_rows(), 0u);
 }
@@ -95,16 +94,14 @@ TEST(NumericalExtremes, AllZeroFieldAndZeroRows) {
 }
 
 TEST(NumericalExtremes, OneLightIsRefusedOnePixelAndTermsLightsMinusOneWork) {
-  const ReflectanceField one_light = make_field(4, 4, 1, [](std::int64_t p, int) {
-    return 0.1f * float(p % 5 + 1);
-  });
+  const ReflectanceField one_light =
+      make_field(4, 4, 1, [](std::int64_t p, int) { return 0.1f * float(p % 5 + 1); });
   EXPECT_THROW(compress(one_light, small_options(1, 1)), Error);
   const ReflectanceField one_pixel =
       make_field(1, 1, 6, [](std::int64_t p, int i) { return 0.2f + 0.1f * float(p + i); });
   round_trip(one_pixel, small_options(1, 2));
-  const ReflectanceField few_lights = make_field(6, 5, 4, [](std::int64_t p, int i) {
-    return 0.05f + 0.01f * float((3 * p + 5 * i) % 11);
-  });
+  const ReflectanceField few_lights = make_field(
+      6, 5, 4, [](std::int64_t p, int i) { return 0.05f + 0.01f * float((3 * p + 5 * i) % 11); });
   const CompressedField read = round_trip(few_lights, small_options(2, 3));  // terms = lights - 1
   EXPECT_EQ(read.terms, 3);
 }
@@ -113,11 +110,10 @@ TEST(NumericalExtremes, SunOf1e6GivesFiniteLightAndImages) {
   SkyOptions sky;
   sky.width = 512;  // pixels of 0.7 degrees: the 2-degree sun covers several
   sky.sun_radiance = 1e6;
-  const EnvironmentMap map = make_environment_map(render_sky(sky), EnvironmentLayout::latlong,
-                                                  "sun 1e6");
-  ReflectanceField field = make_field(8, 6, 40, [](std::int64_t p, int i) {
-    return 0.02f * float((p * 7 + i * 3) % 13);
-  });
+  const EnvironmentMap map =
+      make_environment_map(render_sky(sky), EnvironmentLayout::latlong, "sun 1e6");
+  ReflectanceField field = make_field(
+      8, 6, 40, [](std::int64_t p, int i) { return 0.02f * float((p * 7 + i * 3) % 13); });
   // A light towards the sun (elevation 35, azimuth 30 degrees), so that its energy is not
   // "outside the light set".
   const double e = 35 * M_PI / 180, a = 30 * M_PI / 180;
@@ -137,9 +133,8 @@ TEST(NumericalExtremes, OpenClFloatAccumulationAgainstADoubleReference) {
   // roundings of the sum of |terms| (4 eps per accumulated term is generous), never more.
   std::mt19937 random(5);
   std::uniform_real_distribution<double> exponent(-4, 4);
-  const ReflectanceField field = make_field(10, 8, 200, [&](std::int64_t, int) {
-    return float(std::pow(10.0, exponent(random)));
-  });
+  const ReflectanceField field = make_field(
+      10, 8, 200, [&](std::int64_t, int) { return float(std::pow(10.0, exponent(random))); });
   const CompressedField compressed = compress(field, small_options(3, 4));
   LightRgb light(field.lights(), 3);
   for (int i = 0; i < field.lights(); ++i)

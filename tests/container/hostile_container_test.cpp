@@ -16,24 +16,30 @@
 namespace relume {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::error_message;
+using ::testing::HasSubstr;
 
 // A container of `width` x `height` one-channel pixels, one light, nothing stored (an all-outside
 // mask): every section valid, written with the real frame code.
-std::string crafted_container(std::int64_t width, std::int64_t height,
-                              const float direction[3]) {
-  const nlohmann::json header = {
-      {"width", width},          {"height", height},
-      {"channels", 1},           {"lights", 1},
-      {"terms", 0},              {"clusters", 0},
-      {"transform", "identity"}, {"stored_rows", 0},
-      {"residual_nonzeros", 0},  {"weights_precision", "float32"},
-      {"residual_precision", "float32"},
-      {"weight_step", 0},        {"residual_step", 0},
-      {"basis_bits", 0},         {"cluster_id_bits", 8},
-      {"residual_length_bits", 8}, {"light_index_bits", 8},
-      {"parameters", nlohmann::json::object()}};
+std::string crafted_container(std::int64_t width, std::int64_t height, const float direction[3]) {
+  const nlohmann::json header = {{"width", width},
+                                 {"height", height},
+                                 {"channels", 1},
+                                 {"lights", 1},
+                                 {"terms", 0},
+                                 {"clusters", 0},
+                                 {"transform", "identity"},
+                                 {"stored_rows", 0},
+                                 {"residual_nonzeros", 0},
+                                 {"weights_precision", "float32"},
+                                 {"residual_precision", "float32"},
+                                 {"weight_step", 0},
+                                 {"residual_step", 0},
+                                 {"basis_bits", 0},
+                                 {"cluster_id_bits", 8},
+                                 {"residual_length_bits", 8},
+                                 {"light_index_bits", 8},
+                                 {"parameters", nlohmann::json::object()}};
   ByteWriter lights;
   for (int c = 0; c < 3; ++c) lights.f32(direction[c]);
   for (int c = 0; c < 3; ++c) lights.f32(1.0f);

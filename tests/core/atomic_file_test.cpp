@@ -3,6 +3,8 @@
 // signal unlinks the registered temporary and exits 130; stale temporaries of dead processes are
 // removed by the next write; folders are written whole or not at all; a full disk (a file-size
 // limit) is an Error naming the target; output locations are checked before any work.
+#include "core/atomic_file.hpp"
+
 #include <signal.h>
 #include <sys/resource.h>
 
@@ -10,7 +12,6 @@
 #include <fstream>
 #include <relume/error.hpp>
 
-#include "core/atomic_file.hpp"
 #include "core/interruption.hpp"
 #include "core/signals.hpp"
 #include "support/test_support.hpp"
@@ -35,9 +36,7 @@ std::vector<std::string> temporaries(const fs::path& folder) {
   return names;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 TEST(AtomicFileFaults, SigintWhileWritingKeepsThePreviousFile) {
   testing::TempDir dir;
@@ -108,9 +107,8 @@ TEST(AtomicFileFaults, FolderIsWrittenWholeOrNotAtAll) {
   EXPECT_FALSE(fs::exists(target));
   EXPECT_THAT(temporaries(dir.path()), ::testing::IsEmpty());
 
-  write_folder_atomically(target, [&](const fs::path& temp) {
-    write_file_atomically(temp / "001.exr", "first");
-  });
+  write_folder_atomically(
+      target, [&](const fs::path& temp) { write_file_atomically(temp / "001.exr", "first"); });
   EXPECT_EQ(contents(target / "001.exr"), "first");
   // Into an existing folder: entries of the same names are replaced, others kept.
   write_text(target / "notes.txt", "kept");
@@ -154,9 +152,8 @@ TEST(AtomicFileFaults, OutputLocationsAreCheckedBeforeWork) {
   write_text(dir / "file", "");
   EXPECT_THAT(testing::error_message([&] { check_output_folder_location(dir / "file"); }),
               HasSubstr("a file of that name exists"));
-  EXPECT_THAT(
-      testing::error_message([&] { check_output_folder_location(dir / "file" / "sub"); }),
-      HasSubstr("is not a folder"));
+  EXPECT_THAT(testing::error_message([&] { check_output_folder_location(dir / "file" / "sub"); }),
+              HasSubstr("is not a folder"));
   EXPECT_NO_THROW(check_output_folder_location(dir / "new" / "deeper"));
   EXPECT_NO_THROW(check_output_file_location(dir / "x.exr"));
 }

@@ -1,6 +1,8 @@
 // Tests of parallel_for's limits: --threads has an upper bound, and a thread the system refuses
 // (here: an address-space limit too small for the stacks) makes the loop run on fewer workers
 // instead of aborting.
+#include "core/parallel.hpp"
+
 #include <sys/resource.h>
 
 #include <atomic>
@@ -8,7 +10,6 @@
 #include <relume/error.hpp>
 #include <vector>
 
-#include "core/parallel.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {

@@ -14,19 +14,18 @@ namespace relume {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using testing::error_message;
+using ::testing::HasSubstr;
 
-fs::path write_text(const testing::TempDir& dir, const std::string& name,
-                    const std::string& text) {
+fs::path write_text(const testing::TempDir& dir, const std::string& name, const std::string& text) {
   std::ofstream(dir / name, std::ios::binary) << text;
   return dir / name;
 }
 
 TEST(HostileLightFile, LpNamesSurviveSeveralBlanksBetweenFields) {
   testing::TempDir dir;
-  const LpFile lp = read_lp_file(write_text(
-      dir, "set.lp", "2\n  my shot 1.png \t  0   0\t\t1\nb.png\v0 1 0\f\r\n"));
+  const LpFile lp = read_lp_file(
+      write_text(dir, "set.lp", "2\n  my shot 1.png \t  0   0\t\t1\nb.png\v0 1 0\f\r\n"));
   ASSERT_EQ(lp.images.size(), 2u);
   EXPECT_EQ(lp.images[0], "my shot 1.png");
   EXPECT_EQ(lp.images[1], "b.png");
@@ -43,14 +42,16 @@ TEST(HostileLightFile, BlankLinesOfVerticalTabsAndFormFeedsAreSkipped) {
 
 TEST(HostileLightFile, HugeCountsAreRefusedWithTheLine) {
   testing::TempDir dir;
-  for (const std::string count : {"9223372036854775808", "18446744073709551616", "2147483648",
-                                  "-1", "0", "1e3", "3 4"})
-    EXPECT_THAT(error_message([&] { read_lp_file(write_text(dir, "c.lp", count + "\na 0 0 1\n")); }),
-                HasSubstr("c.lp:1: expected the light count"))
+  for (const std::string count :
+       {"9223372036854775808", "18446744073709551616", "2147483648", "-1", "0", "1e3", "3 4"})
+    EXPECT_THAT(
+        error_message([&] { read_lp_file(write_text(dir, "c.lp", count + "\na 0 0 1\n")); }),
+        HasSubstr("c.lp:1: expected the light count"))
         << count;
   // A count the file does not hold is refused without allocating for it.
-  EXPECT_THAT(error_message([&] { read_lp_file(write_text(dir, "d.lp", "2000000000\na 0 0 1\n")); }),
-              HasSubstr("header says 2000000000 lights but 1 light lines follow"));
+  EXPECT_THAT(
+      error_message([&] { read_lp_file(write_text(dir, "d.lp", "2000000000\na 0 0 1\n")); }),
+      HasSubstr("header says 2000000000 lights but 1 light lines follow"));
 }
 
 TEST(HostileLightFile, HugeCoordinatesAreNormalisedWithoutOverflow) {
@@ -61,8 +62,9 @@ TEST(HostileLightFile, HugeCoordinatesAreNormalisedWithoutOverflow) {
   EXPECT_NEAR(d(0, 2), 0.70710678f, 1e-6f);
   EXPECT_NEAR(d(1, 1), -0.70710678f, 1e-6f);
   EXPECT_FLOAT_EQ(d(2, 0), 1.0f);
-  EXPECT_THAT(error_message([&] { read_direction_rows(write_text(dir, "z.txt", "0 0 1\n0 0 0\n")); }),
-              HasSubstr("z.txt:2: light direction has zero length"));
+  EXPECT_THAT(
+      error_message([&] { read_direction_rows(write_text(dir, "z.txt", "0 0 1\n0 0 0\n")); }),
+      HasSubstr("z.txt:2: light direction has zero length"));
   EXPECT_THAT(error_message([&] { read_direction_rows(write_text(dir, "o.txt", "1e400 0 1\n")); }),
               HasSubstr("o.txt:1: light direction '1e400' is not finite"));
 }
