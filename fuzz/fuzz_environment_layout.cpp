@@ -60,7 +60,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const Eigen::Vector2i pixel = direction_to_pixel(map, *direction);
       require(pixel.x() >= 0 && pixel.x() < width && pixel.y() >= 0 && pixel.y() < height);
     }
-  require(std::abs(total - 4 * M_PI) < 1e-3 * 4 * M_PI);
+  // Angular pixels are integrated numerically: a 4 x 4 probe sums to 2.8% below 4 pi, 8 x 8 to
+  // 0.23%, 64 x 64 to 0.008% (docs/reliability.md); 5% bounds the tiny maps.
+  require(std::abs(total - 4 * M_PI) < 0.05 * 4 * M_PI);
   const Eigen::Vector3d direction(dx, dy, dz);
   if (direction.allFinite() && direction.norm() > 1e-300 && direction.norm() < 1e300) {
     const Eigen::Vector2i pixel = direction_to_pixel(map, direction);

@@ -265,7 +265,7 @@ EnvironmentLayout detect_layout(int width, int height, const std::string& name) 
       throw Error(prefix + "aspect ratio is close to " + k.text +
                   " but not exact, so the layout is ambiguous; pass --layout " +
                   layout_name(k.layout) + " if that is what it is");
-  if (3 * width == 4 * height)
+  if (3 * w == 4 * h)
     throw Error(prefix +
                 "looks like a horizontal cross (4:3), which is not supported; convert it "
                 "to a vertical cross (3:4), lat-long or angular map");

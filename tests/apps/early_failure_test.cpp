@@ -107,6 +107,16 @@ TEST_F(EarlyFailure, WorkAboveTheMemoryLimitIsRefusedWithTheNumbers) {
   EXPECT_THAT(run.output, HasSubstr("'lots' is not a size in bytes"));
 }
 
+TEST_F(EarlyFailure, FilesystemErrorsNameThePathWithExitOne) {
+  // A name longer than any file system allows: std::filesystem throws, the command says so.
+  const std::string long_name(5000, 'a');
+  const auto run = run_relume("info " + at(long_name + ".relume"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("relume: error: File name too long: "));
+  EXPECT_THAT(run.output, HasSubstr(long_name));
+  EXPECT_THAT(run.output, Not(HasSubstr("internal error")));
+}
+
 TEST_F(EarlyFailure, HostileLightFilesAreErrorsNotInternalErrors) {
   std::ofstream(dir_ / "huge.lp") << "9223372036854775808\na.png 0 0 1\n";
   std::ofstream(dir_ / "tabs.lp") << "1\n\v\n";
