@@ -21,6 +21,7 @@
 #include "compress/storage_precision.hpp"
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
@@ -101,6 +102,21 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
   return line;
 }
 
+// The stored precisions the options name; throws Error naming a bad name.
+StoragePrecision storage_precision(const CompressArguments& arguments,
+                                   const CompressionOptions& options) {
+  if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
+    throw Error("--bases-precision must be 'quantized' or 'float32', got '" +
+                arguments.bases_precision + "'");
+  StoragePrecision precision;
+  precision.weights = parse_value_precision(arguments.weights_precision);
+  precision.residual = parse_value_precision(arguments.residual_precision);
+  precision.quantize_bases = arguments.bases_precision == "quantized";
+  precision.budget = arguments.quantization_budget;
+  precision.threads = options.clustering.threads;
+  return precision;
+}
+
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -133,17 +149,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
         record.clusters, record.seconds);
   };
 
-  if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
-    throw Error("--bases-precision must be 'quantized' or 'float32', got '" +
-                arguments.bases_precision + "'");
-
   // What the file stores (store_with_precision); `compressed` stays for the report.
-  StoragePrecision precision;
-  precision.weights = parse_value_precision(arguments.weights_precision);
-  precision.residual = parse_value_precision(arguments.residual_precision);
-  precision.quantize_bases = arguments.bases_precision == "quantized";
-  precision.budget = arguments.quantization_budget;
-  precision.threads = options.clustering.threads;
+  const StoragePrecision precision = storage_precision(arguments, options);
   ContainerOptions container = precision.container_options();
   const QuantizationBudget budget = precision.quantization_budget();
 
@@ -270,6 +277,16 @@ void run_compress(CompressArguments& arguments) {
     throw Error("--target-error must be a relative error > 0, got " +
                 std::to_string(arguments.target_error));
 
+  // Options and outputs are checked before any field is loaded: a typo costs no clustering.
+  validate_compression_options(options);
+  storage_precision(arguments, options);
+  if (arguments.inputs.size() > 1) {
+    check_output_folder_location(arguments.output);
+  } else {
+    check_output_file_location(arguments.output);
+    check_output_file_location(arguments.output + ".checkpoint");
+  }
+  if (!arguments.report.empty()) check_output_file_location(arguments.report);
   const std::vector<fs::path> outputs = output_paths(arguments);
 
   std::unique_ptr<OpenClAssigner> opencl;
@@ -293,6 +310,8 @@ void run_compress(CompressArguments& arguments) {
     }
     try {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
+    } catch (const Interrupted&) {
+      throw;  // an interruption stops the whole batch
     } catch (const std::exception& e) {
       std::fprintf(stderr, "relume: compress: %s failed: %s\n", input.c_str(), e.what());
       failures.push_back({{"input", input}, {"error", e.what()}});

@@ -3,6 +3,8 @@
 
 #include <relume/error.hpp>
 
+#include "core/atomic_file.hpp"
+
 namespace relume {
 namespace fs = std::filesystem;
 
@@ -19,9 +21,8 @@ void check_new_output(const fs::path& path) {
 }
 
 void check_output_folder(const fs::path& folder) {
-  if (!fs::exists(folder)) return;
-  if (!fs::is_directory(folder)) throw Error(folder.string() + " exists and is not a folder");
-  if (!overwrite && !fs::is_empty(folder))
+  check_output_folder_location(folder);
+  if (!overwrite && fs::is_directory(folder) && !fs::is_empty(folder))
     throw Error("output folder " + folder.string() +
                 " is not empty: pass -y/--overwrite to write into it (files of the same names "
                 "are replaced)");

@@ -13,11 +13,13 @@ void allow_overwrite();
 bool overwrite_allowed();
 
 // Throws Error naming `path` when it exists (as a file or anything else) and overwriting is not
-// allowed. An empty path (an optional output not asked for) passes.
+// allowed. An empty path (an optional output not asked for) passes. Whether it can be written is
+// core/atomic_file.hpp's check_output_file_location.
 void check_new_output(const std::filesystem::path& path);
 
 // Throws Error naming `folder` when it exists and is not an empty folder, unless overwriting is
-// allowed (then files of the same names are replaced; a file in its place is still refused).
+// allowed (then files of the same names are replaced), or when it could not be written (a file in
+// its place, an unwritable parent: check_output_folder_location).
 void check_output_folder(const std::filesystem::path& folder);
 
 }  // namespace relume

@@ -12,6 +12,7 @@
 
 #include "command_registry.hpp"
 #include "container/container.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "field/mask_file.hpp"
 #include "field_input_options.hpp"
@@ -49,6 +50,7 @@ void relight_container(const RelightOptions& options) {
                 " stores only the pixels inside its mask: --no-mask cannot bring the background "
                 "back (compress with --no-mask to keep it)");
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
+  check_relight_memory(field, 1);
   Relighter renderer(field, options.renderer.relighter);
   const int cap = residual_cap(options.renderer, field.lights);
   Image image = renderer.relight(lights, cap);
@@ -67,6 +69,7 @@ void relight_container(const RelightOptions& options) {
 void run_relight(const RelightOptions& options) {
   check_new_output(options.output);
   check_image_output(options.output, options.image_output);
+  check_output_file_location(options.output);
   check_renderer_options(options.renderer);
   if (std::filesystem::path(options.input).extension() == ".relume") {
     relight_container(options);

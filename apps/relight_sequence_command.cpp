@@ -18,6 +18,7 @@
 
 #include "command_registry.hpp"
 #include "container/container.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
 #include "directional_light_options.hpp"
@@ -161,8 +162,16 @@ void run_sequence(const SequenceOptions& options) {
   if (options.frames < 1) throw Error("--frames must be at least 1");
   check_renderer_options(options.renderer);
   check_new_output(options.report);
+  if (!options.report.empty()) check_output_file_location(options.report);
+  if (pattern) {
+    const fs::path folder = fs::path(pattern->path(0)).parent_path();
+    if (!folder.empty()) check_output_folder_location(folder);
+  }
+  if (!options.video.empty()) check_output_file_location(options.video);
   const CompressedField field = read_container(options.input);
   const std::vector<LightRgb> lights = frame_lights(options, field);
+  check_relight_memory(field, std::min<std::size_t>(std::size_t(options.batch), lights.size()) *
+                                  (options.compare ? 2 : 1));
   if (pattern)
     for (std::size_t frame = 0; frame < lights.size(); ++frame)
       check_new_output(pattern->path(int(frame)));

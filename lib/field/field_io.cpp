@@ -5,6 +5,7 @@
 #include <relume/field.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "field/field_source.hpp"
 #include "field/input_encoding.hpp"
@@ -50,6 +51,11 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
   field.height = first.height;
   field.channels = field_channels(first.channels);
   const int lights = static_cast<int>(source.images.size());
+  check_memory_need(std::uint64_t(field.pixels()) * std::uint64_t(field.channels) *
+                        std::uint64_t(lights) * sizeof(float),
+                    "the field " + path.string() + " (" + std::to_string(field.width) + "x" +
+                        std::to_string(field.height) + ", " + std::to_string(field.channels) +
+                        " channels, " + std::to_string(lights) + " lights, float32)");
   field.values.resize(field.pixels() * field.channels, lights);
   field.directions = source.directions;
   field.intensities = source.intensities.rows() ? source.intensities : LightRgb::Ones(lights, 3);
@@ -69,8 +75,15 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
     float scale[3];
     for (int c = 0; c < field.channels; ++c) scale[c] = 1.0f / channel_intensity(field, i, c);
     for (std::int64_t p = 0; p < field.pixels(); ++p)
-      for (int c = 0; c < field.channels; ++c)
-        field.values(p * field.channels + c, i) = image.pixels[p * image.channels + c] * scale[c];
+      for (int c = 0; c < field.channels; ++c) {
+        const float value = image.pixels[p * image.channels + c] * scale[c];
+        if (!std::isfinite(value))
+          throw Error("image " + source.images[i].string() + " divided by its light intensity " +
+                      std::to_string(channel_intensity(field, int(i), c)) +
+                      " overflows float32 at pixel (" + std::to_string(p % field.width) + ", " +
+                      std::to_string(p / field.width) + ") channel " + std::to_string(c));
+        field.values(p * field.channels + c, i) = value;
+      }
     if (options.image_loaded) options.image_loaded();
   });
 

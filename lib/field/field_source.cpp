@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <relume/error.hpp>
 
+#include "core/text_numbers.hpp"
 #include "field/light_file.hpp"
 
 namespace relume {
@@ -43,8 +45,8 @@ std::vector<fs::path> read_filenames(const fs::path& folder) {
   if (fs::exists(list)) {
     std::ifstream in(list);
     for (std::string line; std::getline(in, line);) {
-      line.erase(line.find_last_not_of(" \t\r") + 1);
-      if (!line.empty()) images.push_back(folder / line);
+      const std::string_view name = trim_blanks(line);
+      if (!name.empty()) images.push_back(folder / std::string(name));
     }
     if (images.empty()) throw Error(list.string() + " names no images");
     return images;
@@ -85,10 +87,11 @@ FieldSource describe_folder(const fs::path& folder) {
     source.intensities = read_rgb_rows(folder / "light_intensities.txt", "light intensity");
     for (Eigen::Index i = 0; i < source.intensities.rows(); ++i)
       for (int c = 0; c < 3; ++c)
-        if (!(source.intensities(i, c) > 0))
-          throw Error((folder / "light_intensities.txt").string() + ": row " +
-                      std::to_string(i + 1) + " has intensity " +
-                      std::to_string(source.intensities(i, c)) + " (must be positive)");
+        if (!(source.intensities(i, c) > 0) || !std::isfinite(1.0f / source.intensities(i, c)))
+          throw Error(
+              (folder / "light_intensities.txt").string() + ": row " + std::to_string(i + 1) +
+              " has intensity " + std::to_string(source.intensities(i, c)) +
+              " (must be positive, and at least 3e-39 so that images can be divided by it)");
   }
   if (fs::exists(folder / "mask.png")) source.mask = folder / "mask.png";
   return source;

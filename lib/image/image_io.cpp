@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
 #include "image/image_encoding.hpp"
 
 namespace relume {
@@ -29,6 +30,11 @@ Image read_image(const fs::path& path, const ImageReadOptions& options) {
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw Error("image " + path.string() + " has no pixels");
+  check_memory_need(std::uint64_t(spec.width) * std::uint64_t(spec.height) *
+                        std::uint64_t(spec.nchannels) * sizeof(float),
+                    "image " + path.string() + " (" + std::to_string(spec.width) + "x" +
+                        std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) +
+                        " channels)");
   Image image(spec.width, spec.height, spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
     throw Error("cannot decode image " + path.string() + ": " + input->geterror());
