@@ -18,6 +18,7 @@
 #include "compress/compression_report.hpp"
 #include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
+#include "compress/rate_control.hpp"
 #include "compress/storage_precision.hpp"
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
@@ -51,6 +52,9 @@ struct CompressArguments {
   std::string bases_precision = "quantized";
   double quantization_budget = QuantizationBudget{}.relative_increase;
   double target_error = 0;
+  std::uint64_t target_bytes = 0;
+  double target_bytes_per_pixel = 0;
+  double target_psnr = 0;
   double psnr_white = 1.0;
   std::string psnr_mask;
   int irls_iterations = IrlsSettings{}.iterations;
@@ -117,6 +121,47 @@ StoragePrecision storage_precision(const CompressArguments& arguments,
   return precision;
 }
 
+bool has_rate_target(const CompressArguments& arguments) {
+  return arguments.target_bytes > 0 || arguments.target_bytes_per_pixel > 0 ||
+         arguments.target_psnr > 0;
+}
+
+RateTarget rate_target(const CompressArguments& arguments, const ReflectanceField& field,
+                       const std::vector<std::uint8_t>& psnr_mask) {
+  RateTarget target;
+  target.bytes = arguments.target_bytes;
+  if (arguments.target_bytes_per_pixel > 0)
+    target.bytes =
+        std::uint64_t(std::floor(arguments.target_bytes_per_pixel * double(field.pixels())));
+  target.psnr = arguments.target_psnr;
+  target.psnr_white = arguments.psnr_white;
+  target.region = psnr_mask;
+  const std::string solver = arguments.solver;
+  target.parameters_json = [solver](const CompressionOptions& options,
+                                    const CompressionStats& stats) {
+    return compression_parameters(options, stats, solver).dump();
+  };
+  return target;
+}
+
+// At most one target, each finite and positive; throws Error naming the option otherwise.
+void check_targets(const CompressArguments& arguments) {
+  const std::pair<const char*, double> targets[] = {
+      {"--target-error", arguments.target_error},
+      {"--target-bytes", double(arguments.target_bytes)},
+      {"--target-bytes-per-pixel", arguments.target_bytes_per_pixel},
+      {"--target-psnr", arguments.target_psnr}};
+  const char* given = nullptr;
+  for (const auto& [option, value] : targets) {
+    if (value < 0 || !std::isfinite(value))
+      throw Error(std::string(option) + " must be a finite number > 0, got " +
+                  std::to_string(value));
+    if (value == 0) continue;
+    if (given) throw Error(std::string(given) + " and " + option + " are two targets: give one");
+    given = option;
+  }
+}
+
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -154,14 +199,23 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   ContainerOptions container = precision.container_options();
   const QuantizationBudget budget = precision.quantization_budget();
 
+  std::vector<std::uint8_t> psnr_mask;
+  if (!arguments.psnr_mask.empty())
+    psnr_mask = read_mask(arguments.psnr_mask, field.width, field.height);
+
   CompressedField compressed, stored;
   std::optional<QuantizationChoice> quantization;
   nlohmann::ordered_json target_choice;
+  const char* target_key = arguments.target_error > 0 ? "target_error" : "rate_target";
   auto quantize_start = Clock::now();
-  if (arguments.target_error > 0) {
+  if (arguments.target_error > 0 || has_rate_target(arguments)) {
+    const QuantizationBudget* asked_budget = precision.quantizes() ? &budget : nullptr;
     TargetSearch search =
-        compress_to_target_error(field, options, arguments.target_error, container,
-                                 precision.quantizes() ? &budget : nullptr, stats);
+        arguments.target_error > 0
+            ? compress_to_target_error(field, options, arguments.target_error, container,
+                                       asked_budget, stats)
+            : compress_to_rate_target(field, options, rate_target(arguments, field, psnr_mask),
+                                      container, asked_budget, stats);
     quantize_start = Clock::now();
     compressed = search.field;  // already quantized
     stored = quantize_for_container(search.field, container);
@@ -196,11 +250,10 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.solver = arguments.solver;
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
   run.psnr_white = arguments.psnr_white;
-  if (!arguments.psnr_mask.empty())
-    run.psnr_mask = read_mask(arguments.psnr_mask, field.width, field.height);
+  run.psnr_mask = psnr_mask;
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
-  if (!target_choice.is_null()) report["target_error"] = target_choice;
+  if (!target_choice.is_null()) report[target_key] = target_choice;
   const bool rounded = quantization || container.weights == ValuePrecision::float16 ||
                        container.residual == ValuePrecision::float16;
   if (rounded) {
@@ -273,9 +326,7 @@ void run_compress(CompressArguments& arguments) {
     throw Error("--irls-iterations must be >= 0, got " + std::to_string(arguments.irls_iterations));
   options.clustering.weight_fit.iterations = arguments.irls_iterations;
   options.clustering.basis_fit.iterations = arguments.irls_iterations;
-  if (arguments.target_error < 0 || !std::isfinite(arguments.target_error))
-    throw Error("--target-error must be a relative error > 0, got " +
-                std::to_string(arguments.target_error));
+  check_targets(arguments);
 
   // Options and outputs are checked before any field is loaded: a typo costs no clustering.
   validate_compression_options(options);
@@ -424,15 +475,25 @@ const CommandRegistration registration{
           "--target-error", arguments->target_error,
           "Choose terms, clusters and per-function residual lengths that reach this "
           "relative error (paper Eq. 16, masked functions) with the fewest bytes");
+      command->add_option("--target-bytes", arguments->target_bytes,
+                          "Rate control: choose terms, clusters and the residual entries kept "
+                          "for the lowest error (Eq. 16) in a container of at most N bytes; the "
+                          "report's rate_target lists every point tried");
+      command->add_option("--target-bytes-per-pixel", arguments->target_bytes_per_pixel,
+                          "Rate control as --target-bytes, for B bytes per pixel of the frame "
+                          "(B x width x height bytes), e.g. 0.5");
+      command->add_option("--target-psnr", arguments->target_psnr,
+                          "Rate control: the smallest container whose 8-bit PSNR (dB, inside "
+                          "--psnr-mask or the field's mask; --psnr-white) reaches DB, e.g. 40");
       command
           ->add_option("--psnr-white", arguments->psnr_white,
                        "The field value that is 255 in the report's 8-bit PSNR (1 for fields of "
                        "8-bit or normalised images)")
           ->capture_default_str();
       command->add_option("--psnr-mask", arguments->psnr_mask,
-                          "A mask image (non-zero = inside) for the report's masked PSNR, e.g. the "
-                          "object's mask when the whole frame is compressed (default: the field's "
-                          "mask)");
+                          "A mask image (non-zero = inside) for the report's masked PSNR and the "
+                          "region of --target-psnr, e.g. the object's mask when the whole frame "
+                          "is compressed (default: the field's mask)");
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");
       add_field_input_options(*command, arguments->field_input);
