@@ -55,6 +55,7 @@ struct CompressArguments {
   std::uint64_t target_bytes = 0;
   double target_bytes_per_pixel = 0;
   double target_psnr = 0;
+  std::string target_region = "frame";
   double psnr_white = 1.0;
   std::string psnr_mask;
   int irls_iterations = IrlsSettings{}.iterations;
@@ -135,7 +136,10 @@ RateTarget rate_target(const CompressArguments& arguments, const ReflectanceFiel
         std::uint64_t(std::floor(arguments.target_bytes_per_pixel * double(field.pixels())));
   target.psnr = arguments.target_psnr;
   target.psnr_white = arguments.psnr_white;
-  target.region = psnr_mask;
+  // The whole frame, or the mask: --psnr-mask's, else the field's (an empty region).
+  target.region = arguments.target_region == "frame"
+                      ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1)
+                      : psnr_mask;
   const std::string solver = arguments.solver;
   target.parameters_json = [solver](const CompressionOptions& options,
                                     const CompressionStats& stats) {
@@ -483,16 +487,22 @@ const CommandRegistration registration{
                           "Rate control as --target-bytes, for B bytes per pixel of the frame "
                           "(B x width x height bytes), e.g. 0.5");
       command->add_option("--target-psnr", arguments->target_psnr,
-                          "Rate control: the smallest container whose 8-bit PSNR (dB, inside "
-                          "--psnr-mask or the field's mask; --psnr-white) reaches DB, e.g. 40");
+                          "Rate control: the smallest container whose 8-bit PSNR (dB, over "
+                          "--target-region; --psnr-white) reaches DB, e.g. 40");
+      command
+          ->add_option("--target-region", arguments->target_region,
+                       "Where --target-psnr is measured: frame (every pixel) or mask (inside "
+                       "--psnr-mask, else the field's mask)")
+          ->check(CLI::IsMember({"frame", "mask"}))
+          ->capture_default_str();
       command
           ->add_option("--psnr-white", arguments->psnr_white,
                        "The field value that is 255 in the report's 8-bit PSNR (1 for fields of "
                        "8-bit or normalised images)")
           ->capture_default_str();
       command->add_option("--psnr-mask", arguments->psnr_mask,
-                          "A mask image (non-zero = inside) for the report's masked PSNR and the "
-                          "region of --target-psnr, e.g. the object's mask when the whole frame "
+                          "A mask image (non-zero = inside) for the report's masked PSNR and "
+                          "--target-region mask, e.g. the object's mask when the whole frame "
                           "is compressed (default: the field's mask)");
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");

@@ -120,6 +120,13 @@ CurveChoice reach_psnr(RateCurve& curve, double psnr) {
   return {point, point.psnr >= psnr};
 }
 
+std::string region_text(const std::vector<std::uint8_t>& region) {
+  if (region.empty()) return "the field's mask";
+  const auto inside = std::count_if(region.begin(), region.end(), [](std::uint8_t v) { return v; });
+  if (std::size_t(inside) == region.size()) return "the whole frame";
+  return "the given mask (" + std::to_string(inside) + " pixels)";
+}
+
 // Whether `a` is a better choice than `b` for the target.
 bool better(const CurveChoice& a, const CurveChoice& b, const RateTarget& target) {
   if (a.met != b.met) return a.met;
@@ -196,7 +203,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   else
     goal = {{"psnr_8bit", target.psnr},
             {"white", target.psnr_white},
-            {"region", target.region.empty() ? "the field's mask" : "the given mask"}};
+            {"region", region_text(target.region)}};
   best.explanation = {
       {"target", goal},
       {"method",
