@@ -1,8 +1,8 @@
 // `relume compare IMAGE REFERENCE`: how far a relit image is from a reference (for example a
 // compressed field relit against the uncompressed one): relative squared error, relative L2
-// error, RMS and PSNR, the largest absolute difference and where it is, and the count of negative
-// values; with --mask, inside the mask only. --fail T exits 1 above a threshold; --json - prints
-// the JSON on stdout.
+// error, RMS and PSNR, the largest absolute and relative differences and where they are, and the
+// count of negative values; with --mask, inside the mask only. --fail T exits 1 above a threshold;
+// --json - prints the JSON on stdout.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -40,11 +40,13 @@ void run_compare(const CompareOptions& options) {
   // The figures are the result asked for: on stdout, unless the JSON goes there.
   std::fprintf(json_to_stdout ? stderr : stdout,
                "%s against %s: relative squared error %.6g (relative L2 %.6g), RMS %.6g, PSNR %s "
-               "(peak 1), largest |difference| %.6g at pixel (%d, %d) channel %d, %zu of %zu "
-               "values negative\n",
+               "(peak 1), largest |difference| %.6g at pixel (%d, %d) channel %d, largest "
+               "relative difference %.4g at pixel (%d, %d) channel %d, %zu of %zu values "
+               "negative\n",
                options.image.c_str(), options.reference.c_str(), d.relative_squared_error,
                std::sqrt(d.relative_squared_error), std::sqrt(d.mean_squared_difference), psnr_text,
-               d.max_abs_difference, d.max_x, d.max_y, d.max_channel, d.negative_values, d.values);
+               d.max_abs_difference, d.max_x, d.max_y, d.max_channel, d.max_relative_difference,
+               d.relative_x, d.relative_y, d.relative_channel, d.negative_values, d.values);
   if (!options.json.empty()) {
     nlohmann::ordered_json report = {
         {"image", options.image},
@@ -55,6 +57,10 @@ void run_compare(const CompareOptions& options) {
         {"psnr_db", std::isinf(psnr) ? nlohmann::ordered_json() : nlohmann::ordered_json(psnr)},
         {"max_abs_difference", d.max_abs_difference},
         {"max_at", {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}}},
+        {"max_relative_difference", d.max_relative_difference},
+        {"max_relative_at",
+         {{"x", d.relative_x}, {"y", d.relative_y}, {"channel", d.relative_channel}}},
+        {"relative_difference_floor", relative_difference_floor},
         {"negative_values", d.negative_values},
         {"values", d.values},
         {"mask",
@@ -83,7 +89,8 @@ const CommandRegistration registration{
           "compare",
           "Compare an image with a reference of the same size (any format OpenImageIO reads; use "
           "linear EXRs for relit images): relative squared error sum (a - r)^2 / sum r^2, relative "
-          "L2 error, RMS and PSNR (peak 1), largest absolute difference, negative values.\n"
+          "L2 error, RMS and PSNR (peak 1), largest absolute difference, largest relative "
+          "difference |a - r| / max(|r|, 1% of the reference's peak), negative values.\n"
           "Example: relume compare relit.exr reference.exr --fail 0.001 --json -");
       command->add_option("image", options->image, "The image to judge")->required();
       command->add_option("reference", options->reference, "The reference image")->required();

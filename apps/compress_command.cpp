@@ -43,6 +43,7 @@ struct CompressArguments {
   std::string output;
   std::string report;
   std::string residual = "5%";
+  std::string residual_allocation = "per-function";
   std::string solver = "irls";
   std::string transform = "identity";
   std::string assign = "opencl";
@@ -97,13 +98,17 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
                   "functions not stored)",
                   report["error_masked"].get<double>(), report["error_all"].get<double>(),
                   static_cast<long long>(outside));
+  const nlohmann::ordered_json& per_light = report["per_light_error_masked"];
   char line[1024];
   std::snprintf(line, sizeof line,
-                "compressed %s -> %s: %llu bytes (%.4f of float32), %s, %d clusters, %.1f s",
+                "compressed %s -> %s: %llu bytes (%.4f of float32), %s, largest per-light error "
+                "%.3g of its function's peak, %lld negative values, %d clusters, %.1f s",
                 report["input"].get<std::string>().c_str(),
                 report["output"].get<std::string>().c_str(),
                 static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-                report["ratio"].get<double>(), error, clusters, report["seconds"].get<double>());
+                report["ratio"].get<double>(), error, per_light["largest_relative"].get<double>(),
+                static_cast<long long>(per_light["negative_values"].get<std::int64_t>()), clusters,
+                report["seconds"].get<double>());
   return line;
 }
 
@@ -164,6 +169,10 @@ void check_targets(const CompressArguments& arguments) {
     if (given) throw Error(std::string(given) + " and " + option + " are two targets: give one");
     given = option;
   }
+  if (given && arguments.residual_allocation != "per-function")
+    throw Error(std::string("--residual-allocation ") + arguments.residual_allocation +
+                " does not apply with " + given +
+                ", which chooses every function's residual length itself");
 }
 
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
@@ -319,6 +328,7 @@ std::vector<fs::path> output_paths(const CompressArguments& arguments) {
 void run_compress(CompressArguments& arguments) {
   CompressionOptions options = arguments.options;
   options.residual = parse_residual_budget(arguments.residual);
+  options.residual_allocation = parse_residual_allocation(arguments.residual_allocation);
   if (arguments.transform == "haar")
     options.transform = BasisTransform::haar;
   else if (arguments.transform != "identity")
@@ -403,6 +413,14 @@ const CommandRegistration registration{
       command->add_option("--residual", arguments->residual,
                           "Residual entries kept per function: a count N or a percentage of the "
                           "lights P% (default 5%)");
+      command
+          ->add_option("--residual-allocation", arguments->residual_allocation,
+                       "How the residual entries are spread: per-function (default: the same N "
+                       "in every function) or peak (N x functions over the field, the entries "
+                       "largest relative to their function's peak: bounds the largest per-light "
+                       "error, which a concentrated light such as a sun shows; a function keeps "
+                       "at most 4N). Example: --residual 12 --residual-allocation peak")
+          ->check(CLI::IsMember({"per-function", "peak"}));
       command->add_option("--noise-floor", options.noise_floor,
                           "Field units: pixels whose every channel has an RMS over the lights at "
                           "or below X share one dark model (no stored rows); default: the input's "

@@ -2,11 +2,13 @@
 // (see clustered_factorization.hpp).
 #include "compress/clustered_factorization.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <relume/error.hpp>
 
+#include "compress/peak_residual_allocation.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
 #include "model/haar_transform.hpp"
@@ -190,9 +192,22 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
 
   start = Clock::now();
   stats.residual_entries = options.residual.entries_for(field.lights());
+  const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
+  // By peak, a function may take up to peak_allocation_row_cap times the average budget.
+  const int row_cap =
+      by_peak ? std::min(field.lights(), stats.residual_entries * peak_allocation_row_cap)
+              : stats.residual_entries;
   CompressedField out =
-      build_compressed_field(field, prepared, model, options.transform, stats.residual_entries,
+      build_compressed_field(field, prepared, model, options.transform, row_cap,
                              stats.residual_threshold, {}, stats, clustering.threads);
+  if (by_peak) {
+    std::vector<double> peak(out.stored_rows());
+    for (std::size_t r = 0; r < peak.size(); ++r)
+      peak[r] = field.values.row(out.stored_function[r]).cwiseAbs().maxCoeff();
+    keep_largest_relative_to_peak(out.residual, peak,
+                                  std::size_t(stats.residual_entries) * out.stored_rows());
+    stats.residual_nonzeros = out.residual.nonzeros();
+  }
   stats.residual_seconds = seconds_since(start);
   return out;
 }

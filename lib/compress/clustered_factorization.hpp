@@ -20,7 +20,8 @@ namespace relume {
 
 struct CompressionOptions {
   ClusteringOptions clustering;
-  ResidualBudget residual;  // entries kept per function
+  ResidualBudget residual;  // entries kept per function (on average with allocation `peak`)
+  ResidualAllocation residual_allocation = ResidualAllocation::per_function;
   // Field units. The noise floor: pixels whose every channel has an RMS at or below it go to the
   // dark model (PreparedRows). The threshold: residual entries with |value| at or below it are
   // dropped. Negative: the field's own noise floor (ReflectanceField::noise_floor) for both.

@@ -5,8 +5,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "model/field_psnr.hpp"
+#include "model/per_light_error.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -48,6 +50,33 @@ nlohmann::ordered_json clustering_json(const ClusteringTrace& trace) {
   return json;
 }
 
+nlohmann::ordered_json per_light_error_json(const PerLightError& error,
+                                            const CompressedField& field) {
+  nlohmann::ordered_json at;
+  if (error.function >= 0) {
+    const std::int64_t pixel = error.function / field.channels;
+    at = {{"x", pixel % field.width},
+          {"y", pixel / field.width},
+          {"channel", error.function % field.channels},
+          {"light", error.light}};
+  }
+  nlohmann::ordered_json above = nlohmann::ordered_json::object();
+  for (std::size_t level = 0; level < error.functions_above.size(); ++level) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%g", per_light_error_levels[level]);
+    above[name] = error.functions_above[level];
+  }
+  return {{"largest_relative", error.largest},
+          {"largest_at", at},
+          {"mean_of_function_largest", error.mean_of_largest},
+          {"share_of_functions_above", above},
+          {"functions_measured", error.functions_measured},
+          {"zero_peak_skipped", error.zero_peak_skipped},
+          {"negative_values", error.negative_values},
+          {"values_measured", error.values_measured},
+          {"most_negative_relative", error.most_negative}};
+}
+
 }  // namespace
 
 std::uint64_t peak_memory_bytes() {
@@ -65,6 +94,7 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
           {"terms", clustering.terms},
           {"residual", options.residual.describe()},
           {"residual_entries", stats.residual_entries},
+          {"residual_allocation", to_string(options.residual_allocation)},
           {"residual_threshold", stats.residual_threshold},
           {"noise_floor", stats.noise_floor},
           {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
@@ -93,6 +123,8 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
     by_prefix[std::to_string(cap)] = relative_error(field, compressed, true, cap, run.threads).mean;
   }
   by_prefix[std::to_string(stats.residual_entries)] = masked.mean;
+  const PerLightError per_light =
+      per_light_error(field, compressed, true, all_residual_entries, run.threads);
   const Psnr8 psnr = psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads,
                                run.psnr_mask);
   const double error_seconds =
@@ -130,6 +162,7 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
       {"float32_input_bytes", input_bytes},
       {"sections", sections},
       {"error_masked_by_residual_entries", by_prefix},
+      {"per_light_error_masked", per_light_error_json(per_light, compressed)},
       {"error_all_detail", error_json(all)},
       {"error_masked_detail", error_json(masked)},
       {"field",

@@ -1,7 +1,9 @@
 // The JSON report of one `relume compress` run: time per phase, iterations with their L1
 // objective, bytes per container section and the ratio to the float32 input, the error of paper
 // Eq. 16 over all functions and over the masked ones (also at shorter residual prefixes), the
-// 8-bit PSNR over the whole frame and inside the mask (lib/model/field_psnr.hpp), bytes per pixel,
+// 8-bit PSNR over the whole frame and inside the mask (lib/model/field_psnr.hpp), the worst
+// per-light error relative to each function's peak and the negative values of the masked
+// functions (lib/model/per_light_error.hpp), bytes per pixel,
 // sparseness of the residual at several thresholds (paper Fig. 4d) and peak memory.
 #pragma once
 
@@ -25,8 +27,8 @@ struct CompressionRun {
   double total_seconds = 0;
   unsigned threads = 0;
   std::string solver;
-  std::string assignment_device;  // "cpu" or the OpenCL device label
-  double psnr_white = 1.0;        // the field value that is 255 in the 8-bit PSNR
+  std::string assignment_device;        // "cpu" or the OpenCL device label
+  double psnr_white = 1.0;              // the field value that is 255 in the 8-bit PSNR
   std::vector<std::uint8_t> psnr_mask;  // the PSNR's "mask" region; empty: the field's mask
 };
 

@@ -46,6 +46,16 @@ ResidualBudget parse_residual_budget(const std::string& text) {
   return budget;
 }
 
+ResidualAllocation parse_residual_allocation(const std::string& text) {
+  if (text == "per-function") return ResidualAllocation::per_function;
+  if (text == "peak") return ResidualAllocation::peak;
+  throw Error("residual allocation '" + text + "' is invalid: expected per-function or peak");
+}
+
+const char* to_string(ResidualAllocation allocation) {
+  return allocation == ResidualAllocation::peak ? "peak" : "per-function";
+}
+
 void append_residual_row(const float* residual, int lights, int max_entries, float threshold,
                          ResidualRows& rows, std::vector<int>& scratch) {
   scratch.clear();

@@ -20,6 +20,16 @@ struct ResidualBudget {
   std::string describe() const;  // "10" or "5%"
 };
 
+// How the residual budget is spread over the functions: `per_function` keeps the budget's n
+// largest entries of every function (paper section 3.4); `peak` keeps n x functions entries over
+// the whole field, those largest relative to their function's peak
+// (compress/peak_residual_allocation.hpp).
+enum class ResidualAllocation { per_function, peak };
+
+// "per-function" or "peak"; throws Error naming the bad text.
+ResidualAllocation parse_residual_allocation(const std::string& text);
+const char* to_string(ResidualAllocation allocation);
+
 // "N" (a count >= 0) or "P%" (0 <= P <= 100); throws Error naming the bad text.
 ResidualBudget parse_residual_budget(const std::string& text);
 

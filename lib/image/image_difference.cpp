@@ -1,6 +1,7 @@
 // Implementation of the image comparison (see image_difference.hpp).
 #include "image/image_difference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <relume/error.hpp>
@@ -24,11 +25,10 @@ ImageDifference image_difference(const Image& image, const Image& reference,
   if (!mask.empty() && mask.size() != std::size_t(image.width) * image.height)
     throw Error("the mask has " + std::to_string(mask.size()) + " pixels but " + image_label +
                 " has " + std::to_string(std::size_t(image.width) * image.height));
-  ImageDifference result;
-  double difference = 0, energy = 0;
+  const auto inside = [&](std::size_t i) { return mask.empty() || mask[i / image.channels]; };
+  double reference_peak = 0;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    if (!mask.empty() && !mask[i / image.channels]) continue;
-    ++result.values;
+    if (!inside(i)) continue;
     const double a = image.pixels[i], r = reference.pixels[i];
     if (!std::isfinite(a) || !std::isfinite(r)) {
       const std::size_t pixel = i / image.channels;
@@ -37,6 +37,15 @@ ImageDifference image_difference(const Image& image, const Image& reference,
                   ") channel " + std::to_string(i % image.channels) + " is " +
                   std::to_string(std::isfinite(a) ? r : a) + ", expected a finite value");
     }
+    reference_peak = std::max(reference_peak, std::abs(r));
+  }
+  const double relative_floor = relative_difference_floor * reference_peak;
+  ImageDifference result;
+  double difference = 0, energy = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    if (!inside(i)) continue;
+    ++result.values;
+    const double a = image.pixels[i], r = reference.pixels[i];
     const double d = a - r;
     difference += d * d;
     energy += r * r;
@@ -47,6 +56,15 @@ ImageDifference image_difference(const Image& image, const Image& reference,
       result.max_x = int(pixel % image.width);
       result.max_y = int(pixel / image.width);
       result.max_channel = int(i % image.channels);
+    }
+    const double scale = std::max(std::abs(r), relative_floor);  // 0: the reference is all zero
+    const double relative = scale > 0 ? std::abs(d) / scale : 0.0;
+    if (relative > result.max_relative_difference) {
+      const std::size_t pixel = i / image.channels;
+      result.max_relative_difference = relative;
+      result.relative_x = int(pixel % image.width);
+      result.relative_y = int(pixel / image.width);
+      result.relative_channel = int(i % image.channels);
     }
   }
   result.mean_squared_difference = result.values > 0 ? difference / double(result.values) : 0;

@@ -1,8 +1,10 @@
 // How far an image is from a reference image of the same size: the relative squared error (the
 // per-image form of paper Eq. 16, sum (a - r)^2 / sum r^2), the largest absolute difference and
 // where it is, and how many values are negative (a relit compressed field can undershoot zero,
-// which an 8-bit output then shows as black), and the mean squared difference behind RMS and
-// PSNR. A mask restricts every figure to the pixels inside.
+// which an 8-bit output then shows as black), the largest relative difference (|a - r| over
+// max(|r|, 1% of the reference's peak): a crescent relit 90% too dark shows as 0.9 however dim
+// it is, and black reference pixels do not divide by zero) and where it is, and the mean squared
+// difference behind RMS and PSNR. A mask restricts every figure to the pixels inside.
 #pragma once
 
 #include <cstdint>
@@ -18,9 +20,16 @@ struct ImageDifference {
   double mean_squared_difference = 0;  // over the compared values; RMS is its square root
   double max_abs_difference = 0;
   int max_x = 0, max_y = 0, max_channel = 0;  // where the largest difference is
-  std::size_t negative_values = 0;            // in the image (not the reference)
-  std::size_t values = 0;                     // compared (inside the mask)
+  // max |a - r| / max(|r|, relative_difference_floor * the reference's largest |r|); 0 when the
+  // reference is all zero
+  double max_relative_difference = 0;
+  int relative_x = 0, relative_y = 0, relative_channel = 0;  // where it is
+  std::size_t negative_values = 0;                           // in the image (not the reference)
+  std::size_t values = 0;                                    // compared (inside the mask)
 };
+
+// The share of the reference's peak below which max_relative_difference divides by that share.
+inline constexpr double relative_difference_floor = 0.01;
 
 // PSNR in dB for a peak value of 1 (the full range of 8- and 16-bit images, as idiff takes it):
 // 10 log10(1 / mean squared difference); +infinity for identical images.

@@ -151,10 +151,9 @@ ReflectanceField reconstruct_field(const CompressedField& field, int residual_ca
   return result;
 }
 
-RelativeError relative_error(const ReflectanceField& original, const CompressedField& compressed,
-                             bool masked_only, int residual_cap, unsigned threads) {
+void check_original_matches(const ReflectanceField& original, const CompressedField& compressed,
+                            int residual_cap) {
   check_residual_cap(residual_cap);
-  validate_compressed_field(compressed, "cannot measure the error of the compressed field");
   if (original.width != compressed.width || original.height != compressed.height ||
       original.channels != compressed.channels || original.lights() != compressed.lights ||
       original.functions() != compressed.functions())
@@ -163,6 +162,13 @@ RelativeError relative_error(const ReflectanceField& original, const CompressedF
         shape_text(original.width, original.height, original.channels, original.lights()) +
         ", the compressed one " +
         shape_text(compressed.width, compressed.height, compressed.channels, compressed.lights));
+}
+
+RelativeError relative_error(const ReflectanceField& original, const CompressedField& compressed,
+                             bool masked_only, int residual_cap, unsigned threads) {
+  check_residual_cap(residual_cap);
+  validate_compressed_field(compressed, "cannot measure the error of the compressed field");
+  check_original_matches(original, compressed, residual_cap);
   const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
   return average_relative_error(std::size_t(original.functions()), compressed.lights, threads,
                                 [&](std::size_t p, FunctionScratch& rows) {

@@ -30,4 +30,10 @@ void reconstruct_function(const CompressedField& field, std::int64_t stored_row,
 // Stored row of every function, or unstored_row / dark_model_row(c) where it has none.
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
 
+// What every measure of `compressed` against its `original` checks first: throws Error unless
+// the two have the same size, channels and lights (naming both shapes), or for a residual cap
+// below -1.
+void check_original_matches(const ReflectanceField& original, const CompressedField& compressed,
+                            int residual_cap);
+
 }  // namespace relume

@@ -101,6 +101,50 @@ TEST(CompressCommand, WritesAContainerAndAReport) {
   EXPECT_FALSE(read_container(dir / "float.relume").quantization.any());
 }
 
+// Without residual the planted spike of every function stays as a per-light error: the report
+// says the largest one relative to its function's peak, and the negative values, as a direct
+// reading of the stored file against the field on disk finds them.
+TEST(CompressCommand, ReportsTheLargestPerLightErrorAndTheNegativeValues) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(3));
+  const auto result = testing::run_relume(
+      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() +
+      "' --clusters 2 --terms 2 --residual 0 --threads 2 --report '" +
+      (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const ReflectanceField original = load_field(dir / "field");
+  const ReflectanceField rebuilt = reconstruct_field(read_container(dir / "out.relume"));
+  double largest = 0;
+  std::int64_t negative = 0, largest_function = -1;
+  int largest_light = -1;
+  for (std::int64_t p = 0; p < original.functions(); ++p) {
+    if (!original.mask[p / 3]) continue;
+    const double peak = original.values.row(p).cwiseAbs().maxCoeff();
+    for (int i = 0; i < original.lights(); ++i) {
+      const double error = std::abs(original.values(p, i) - rebuilt.values(p, i)) / peak;
+      if (error > largest) {
+        largest = error;
+        largest_function = p;
+        largest_light = i;
+      }
+      negative += original.values(p, i) >= 0 && rebuilt.values(p, i) < 0;
+    }
+  }
+  const nlohmann::json report = read_json(dir / "report.json");
+  const nlohmann::json& reported = report["per_light_error_masked"];
+  EXPECT_GT(largest, 0.05);  // the spikes are at least 0.1 on peaks of at most ~2
+  EXPECT_NEAR(reported["largest_relative"].get<double>(), largest, 1e-6);
+  EXPECT_EQ(reported["largest_at"]["x"], (largest_function / 3) % 16);
+  EXPECT_EQ(reported["largest_at"]["y"], (largest_function / 3) / 16);
+  EXPECT_EQ(reported["largest_at"]["light"], largest_light);
+  EXPECT_EQ(reported["negative_values"].get<std::int64_t>(), negative);
+  EXPECT_EQ(reported["functions_measured"], 16 * 12 / 2 * 3);
+  EXPECT_EQ(reported["values_measured"], 16 * 12 / 2 * 3 * 24);
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "largest per-light error %.3g of its", largest);
+  EXPECT_NE(result.output.find(expected), std::string::npos) << result.output;
+}
+
 TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostReported) {
   testing::TempDir dir;
   const ReflectanceField field = small_field(2);

@@ -32,6 +32,9 @@ TEST(ImageDifference, HandComputedFigures) {
   EXPECT_EQ(d.max_channel, 2);
   EXPECT_EQ(d.negative_values, 1u);
   EXPECT_EQ(d.values, 6u);
+  EXPECT_DOUBLE_EQ(d.max_relative_difference, 3 / 0.02);  // 3 against 1% of the peak 2
+  EXPECT_EQ(d.relative_x, 1);
+  EXPECT_EQ(d.relative_channel, 2);
   EXPECT_DOUBLE_EQ(d.mean_squared_difference, (1 + 0.25 + 9) / 6.0);
   EXPECT_DOUBLE_EQ(peak_signal_to_noise_db(d), -10 * std::log10((1 + 0.25 + 9) / 6.0));
   EXPECT_EQ(image_difference(reference, reference).relative_squared_error, 0);
@@ -44,10 +47,34 @@ TEST(ImageDifference, HandComputedFigures) {
   EXPECT_NEAR(peak_signal_to_noise_db(step), 20 * std::log10(255.0), 1e-4);
 }
 
+TEST(ImageDifference, LargestRelativeDifferenceIsAgainstTheReferenceValueOrOnePercentOfItsPeak) {
+  // Absolute differences 1, 0.25, 0, 0, 0, 0.5; relative 0.25, 0.5, 0, 0, 0, 0.25.
+  const ImageDifference d =
+      image_difference(two_by_one(3, 0.25f, 1, 2, 2, 2.5f), two_by_one(4, 0.5f, 1, 2, 2, 2));
+  EXPECT_DOUBLE_EQ(d.max_abs_difference, 1);
+  EXPECT_EQ(d.max_channel, 0);
+  EXPECT_DOUBLE_EQ(d.max_relative_difference, 0.5);
+  EXPECT_EQ(d.relative_x, 0);
+  EXPECT_EQ(d.relative_y, 0);
+  EXPECT_EQ(d.relative_channel, 1);
+  // A black reference value is measured against 1% of the peak (100): 0.5 / 1.
+  const ImageDifference dark =
+      image_difference(two_by_one(100, 0, 0, 0, 0.5f, 0), two_by_one(100, 0, 0, 0, 0, 0));
+  EXPECT_DOUBLE_EQ(dark.max_relative_difference, 0.5);
+  EXPECT_EQ(dark.relative_x, 1);
+  EXPECT_EQ(dark.relative_channel, 1);
+  // Outside the mask nothing counts.
+  EXPECT_DOUBLE_EQ(image_difference(two_by_one(100, 0, 0, 0, 0.5f, 0),
+                                    two_by_one(100, 0, 0, 0, 0, 0), "a", "b", {1, 0})
+                       .max_relative_difference,
+                   0);
+}
+
 TEST(ImageDifference, AllZeroReference) {
   const Image zero = two_by_one(0, 0, 0, 0, 0, 0);
   EXPECT_EQ(image_difference(zero, zero).relative_squared_error, 0);
   EXPECT_EQ(image_difference(two_by_one(0, 0, 0, 0, 0, 1e-9f), zero).relative_squared_error, 1);
+  EXPECT_EQ(image_difference(two_by_one(0, 0, 0, 0, 0, 1e-9f), zero).max_relative_difference, 0);
 }
 
 TEST(ImageDifference, RefusesOtherSizesAndNonFiniteValues) {
@@ -81,6 +108,12 @@ TEST(CompareCommand, PrintsAndWritesTheFiguresOfTwoFiles) {
   EXPECT_NEAR(report["psnr_db"].get<double>(), -10 * std::log10(10.25 / 6), 1e-9);
   EXPECT_NE(result.output.find("RMS 1.307"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("PSNR -2.33 dB"), std::string::npos) << result.output;
+  EXPECT_DOUBLE_EQ(report["max_relative_difference"].get<double>(), 150);
+  EXPECT_EQ(report["max_relative_at"]["x"], 1);
+  EXPECT_NE(result.output.find("largest relative difference 150 at pixel (1, 0) channel 2, 1 of "
+                               "6 values negative"),
+            std::string::npos)
+      << result.output;
 
   write_image(dir / "small.exr", Image(1, 1, 3));
   result = testing::run_relume("compare '" + (dir / "small.exr").string() + "' '" +

@@ -1,0 +1,101 @@
+// Implementation of the worst per-light errors (see per_light_error.hpp).
+#include "model/per_light_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "core/parallel.hpp"
+#include "model/compressed_field_checks.hpp"
+#include "model/reconstruct_field.hpp"
+
+namespace relume {
+namespace {
+
+constexpr std::size_t levels = std::size(per_light_error_levels);
+
+// One block's figures; functions_above holds counts until the blocks are merged.
+struct BlockFigures {
+  PerLightError error;
+  std::int64_t above[levels] = {};
+};
+
+}  // namespace
+
+PerLightError per_light_error(const ReflectanceField& original, const CompressedField& compressed,
+                              bool masked_only, int residual_cap, unsigned threads) {
+  validate_compressed_field(compressed, "cannot measure the per-light error of the field");
+  check_original_matches(original, compressed, residual_cap);
+  const int lights = compressed.lights;
+  const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
+  constexpr std::size_t block = 1024;
+  const std::size_t functions = std::size_t(original.functions());
+  const std::size_t blocks = (functions + block - 1) / block;
+  std::vector<BlockFigures> partial(blocks);
+  const unsigned workers = resolve_thread_count(threads);
+  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
+  std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
+    BlockFigures& part = partial[b];
+    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
+      if (masked_only && !compressed.mask[p / compressed.channels]) continue;
+      const float* exact = original.values.row(Eigen::Index(p)).data();
+      float* rebuilt = approx[worker].data();
+      reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(), rebuilt);
+      double peak = 0, largest = 0;
+      int largest_light = 0;
+      for (int i = 0; i < lights; ++i) peak = std::max(peak, std::abs(double(exact[i])));
+      part.error.values_measured += lights;
+      for (int i = 0; i < lights; ++i) {
+        const double error = std::abs(double(exact[i]) - rebuilt[i]);
+        if (error > largest) {
+          largest = error;
+          largest_light = i;
+        }
+        if (exact[i] >= 0 && rebuilt[i] < 0) {
+          ++part.error.negative_values;
+          if (peak > 0)
+            part.error.most_negative = std::min(part.error.most_negative, rebuilt[i] / peak);
+        }
+      }
+      if (peak == 0) {
+        ++part.error.zero_peak_skipped;
+        continue;
+      }
+      const double relative = largest / peak;
+      ++part.error.functions_measured;
+      part.error.mean_of_largest += relative;
+      for (std::size_t level = 0; level < levels; ++level)
+        part.above[level] += relative > per_light_error_levels[level];
+      if (relative > part.error.largest) {
+        part.error.largest = relative;
+        part.error.function = std::int64_t(p);
+        part.error.light = largest_light;
+      }
+    }
+  });
+  PerLightError total;
+  std::int64_t above[levels] = {};
+  for (const BlockFigures& part : partial) {  // in block order: ties keep the first function
+    const PerLightError& e = part.error;
+    if (e.largest > total.largest) {
+      total.largest = e.largest;
+      total.function = e.function;
+      total.light = e.light;
+    }
+    total.mean_of_largest += e.mean_of_largest;
+    total.functions_measured += e.functions_measured;
+    total.zero_peak_skipped += e.zero_peak_skipped;
+    total.negative_values += e.negative_values;
+    total.values_measured += e.values_measured;
+    total.most_negative = std::min(total.most_negative, e.most_negative);
+    for (std::size_t level = 0; level < levels; ++level) above[level] += part.above[level];
+  }
+  const double measured = double(std::max<std::int64_t>(total.functions_measured, 1));
+  total.mean_of_largest /= measured;
+  for (std::size_t level = 0; level < levels; ++level)
+    total.functions_above.push_back(double(above[level]) / measured);
+  return total;
+}
+
+}  // namespace relume
