@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <relume/error.hpp>
 
 #include "core/elapsed_time.hpp"
@@ -36,9 +37,51 @@ void validate_options(const ReflectanceField& field, const CompressionOptions& o
     throw Error("residual threshold must be a finite value >= 0, got " +
                 std::to_string(options.residual_threshold));
   validate_size_limits(clustering.sizes, clustering.terms);
+  if (options.method == CompressionMethod::cpca &&
+      (options.multires_levels > 0 || clustering.exact_refit))
+    throw Error(
+        "clustered PCA (--method cpca) has no multi-resolution start and no exact L1 "
+        "refit; leave --multires and --solver at their defaults");
+  if (options.refit_chooses_clusters && options.trimmed_refit_rounds < 0)
+    throw Error("choosing clusters for the refit needs the trimmed refit (--trimmed-refit N)");
+}
+
+// The trimmed least-squares refit for the residual budget, after choosing per cluster between
+// the method's clustering and the other method's when asked.
+void refit_for_budget(const WorkingRows& rows, const CompressionOptions& options,
+                      CompressionStats& stats, ClusterModel& model) {
+  const ClusteringOptions& clustering = options.clustering;
+  TrimmedRefitOptions refit;
+  refit.entries = stats.residual_entries;
+  refit.rounds = options.trimmed_refit_rounds;
+  refit.candidates = clustering.candidates;
+  refit.threads = clustering.threads;
+  refit.quiet = clustering.quiet;
+  TrimmedRefitTrace& trace = stats.trimmed_refit.emplace();
+  if (options.refit_chooses_clusters) {
+    ClusteringTrace other_trace;
+    const ClusterModel other = options.method == CompressionMethod::cpca
+                                   ? cluster_rows(rows, clustering, other_trace)
+                                   : cluster_rows_pca(rows, clustering, options.pca, other_trace);
+    const std::vector<double> own = trimmed_errors(rows, model, refit.entries, refit.threads);
+    trace.objective_before_choice = std::accumulate(own.begin(), own.end(), 0.0);
+    double chosen = 0;
+    model = choose_clusters(rows, model, other, refit, chosen);
+  }
+  refit_trimmed_least_squares(rows, model, refit, trace);
 }
 
 }  // namespace
+
+CompressionMethod parse_compression_method(const std::string& text) {
+  if (text == "l1") return CompressionMethod::l1;
+  if (text == "cpca") return CompressionMethod::cpca;
+  throw Error("compression method must be 'l1' or 'cpca', got '" + text + "'");
+}
+
+std::string to_string(CompressionMethod method) {
+  return method == CompressionMethod::cpca ? "cpca" : "l1";
+}
 
 CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
                                        const ClusterModel& model, BasisTransform transform,
@@ -139,6 +182,8 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   if (prepared.functions.empty()) {
     model.terms = clustering.terms;
     model.lights = field.lights();
+  } else if (resume && options.method == CompressionMethod::cpca) {
+    throw Error("clustered PCA (--method cpca) writes no checkpoints and cannot resume one");
   } else if (resume) {
     model = resume->model;
     if (model.terms != clustering.terms || model.lights != field.lights() ||
@@ -161,14 +206,19 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
         multires_start(field, prepared, options.multires_levels, haar, clustering, *stats.multires);
     iterate_clusters(prepared.rows, model, clustering, options.refine_iterations, stats.clustering,
                      hook);
+  } else if (options.method == CompressionMethod::cpca) {
+    model = cluster_rows_pca(prepared.rows, clustering, options.pca, stats.clustering);
   } else {
     model = cluster_rows(prepared.rows, clustering, stats.clustering, hook);
   }
+  stats.residual_entries = options.residual.entries_for(field.lights());
+  if (options.trimmed_refit_rounds >= 0 && !prepared.functions.empty() &&
+      stats.residual_entries + model.terms < model.lights)
+    refit_for_budget(prepared.rows, options, stats, model);
   stats.clusters = model.clusters;
   stats.clustering_seconds = seconds_since(start);
 
   start = Clock::now();
-  stats.residual_entries = options.residual.entries_for(field.lights());
   CompressedField out =
       build_compressed_field(field, prepared, model, options.transform, stats.residual_entries,
                              options.residual_threshold, {}, stats, clustering.threads);
