@@ -50,6 +50,7 @@ struct CompressArguments {
   double quantization_budget = QuantizationBudget{}.relative_increase;
   double target_error = 0;
   double psnr_white = 1.0;
+  std::string psnr_mask;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
   CompressionOptions options;
@@ -156,6 +157,8 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.solver = arguments.solver;
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
   run.psnr_white = arguments.psnr_white;
+  if (!arguments.psnr_mask.empty())
+    run.psnr_mask = load_mask(arguments.psnr_mask, field.width, field.height);
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
   if (!target_choice.is_null()) report["target_error"] = target_choice;
@@ -303,8 +306,14 @@ const CommandRegistration registration{
       command->add_option("--residual", arguments->residual,
                           "Residual entries kept per function: a count N or a percentage of the "
                           "lights P% (default 5%)");
+      command->add_option("--noise-floor", options.noise_floor,
+                          "Field units: pixels whose every channel has an RMS over the lights at "
+                          "or below X share one dark model (no stored rows); default: the input's "
+                          "quantization step, 1/255 for 8-bit images (divided by the mean light "
+                          "intensity), 0 for float images");
       command->add_option("--threshold", options.residual_threshold,
-                          "Drop residual entries with |value| <= X, in field units (default 0)");
+                          "Drop residual entries with |value| <= X, in field units (default: the "
+                          "noise floor)");
       command->add_option("--solver", arguments->solver,
                           "irls: the fast IRLS L1 fits only (default); lp-dual, lp or huber: refit "
                           "every cluster's F and W exactly with that solver after the iterations");
@@ -378,6 +387,10 @@ const CommandRegistration registration{
                        "The field value that is 255 in the report's 8-bit PSNR (1 for fields of "
                        "8-bit or normalised images)")
           ->capture_default_str();
+      command->add_option("--psnr-mask", arguments->psnr_mask,
+                          "A mask image (non-zero = inside) for the report's masked PSNR, e.g. the "
+                          "object's mask when the whole frame is compressed (default: the field's "
+                          "mask)");
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");
       command->callback([arguments] { run_compress(*arguments); });

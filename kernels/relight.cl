@@ -8,6 +8,9 @@
 //   relight_rows: out[b][p] = W[s] . v[k][.][c][b]
 //                             + sum_{e < min(width, cap)} E[s][e] * I[i_e][c][b]
 //   residual_rows: the residual term alone (the residual SpMV).
+//   dark_pixels: out[b][q * CHANNELS + c] = dark[c][b] for the pixels of the dark model, whose
+//     per-channel values the host computes per frame (dark[c] . I); one work-item per run of
+//     consecutive dark pixels (runs[2r] first pixel, runs[2r + 1] pixels).
 //     One work-item per stored row s (function p, channel c = p % CHANNELS, cluster k). Rows are
 //     grouped in slices of SLICE_ROWS; inside a slice, W is stored slot-major (all rows' term j,
 //     then term j+1), so consecutive work-items read consecutive addresses. The residual
@@ -19,6 +22,10 @@
 //     With BATCH == 1 and ROW_VECTOR > 1 (CPU devices), a work-item relights ROW_VECTOR
 //     consecutive rows of a slice with vector loads and gathers; otherwise a work-item relights
 //     one row for all frames, the frames forming vectors of BATCH_WIDTH.
+//
+// W and the residual values are WEIGHT_T and RESIDUAL_T: float, or the integers of a quantized
+// field (char or short) whose steps the host folded into the blocks and the light vector
+// (lib/relight/relight_layout.hpp), so the kernels only convert them to float.
 //
 // Light vectors: light[(i * CHANNELS + c) * BATCH_PAD + b], lights padded to even with zeros.
 // Products:      v[((k * TERMS + j) * CHANNELS + c) * BATCH_PAD + b].
@@ -45,6 +52,12 @@
 #endif
 #ifndef LIGHT_T
 #define LIGHT_T uint
+#endif
+#ifndef WEIGHT_T
+#define WEIGHT_T float  // or char / short: quantized W
+#endif
+#ifndef RESIDUAL_T
+#define RESIDUAL_T float  // or char / short: quantized residual values
 #endif
 #ifndef ROW_VECTOR
 #define ROW_VECTOR 1  // rows per work-item when BATCH == 1: 1, 4, 8 or 16
@@ -119,14 +132,14 @@ __kernel void cluster_products(const uint light_pairs, __global const float4* bl
 // Adds the first min(group width, cap) entries of `row` in one residual region (groups of
 // group_rows rows starting at offsets[row / group_rows]) times the light vector.
 inline void add_region(const uint row, const uint group_rows, const uint c, const uint cap,
-                       __global const uint* offsets, __global const float* residual_values,
+                       __global const uint* offsets, __global const RESIDUAL_T* residual_values,
                        __global const LIGHT_T* residual_lights, __global const float* light,
                        frames* sums) {
   const uint group = row / group_rows;
   const uint begin = offsets[group] + row % group_rows;
   const uint used = min((offsets[group + 1] - offsets[group]) / group_rows, cap);
   for (uint e = 0; e < used; ++e) {
-    const float value = residual_values[begin + e * group_rows];
+    const float value = (float)residual_values[begin + e * group_rows];
     __global const float* frames_of =
         light + (residual_lights[begin + e * group_rows] * CHANNELS + c) * BATCH_PAD;
     for (int v = 0; v < BATCH_VECTORS; ++v)
@@ -137,7 +150,7 @@ inline void add_region(const uint row, const uint group_rows, const uint c, cons
 // Adds the first `cap` residual entries of `row` (head, then tail) times the light vector.
 inline void add_residual(const uint row, const uint c, const uint cap,
                          __global const uint* slice_offsets, __global const uint* tail_offsets,
-                         __global const float* residual_values,
+                         __global const RESIDUAL_T* residual_values,
                          __global const LIGHT_T* residual_lights, __global const float* light,
                          frames* sums) {
   add_region(row, SLICE_ROWS, c, cap, slice_offsets, residual_values, residual_lights, light,
@@ -170,6 +183,8 @@ typedef ROW_CAT(uint, ROW_VECTOR) row_uints;
 // Gather indices are signed: 32-bit signed lanes let the compiler use dword-indexed gathers.
 typedef ROW_CAT(int, ROW_VECTOR) row_ints;
 #define load_rows(pointer) ROW_CAT(vload, ROW_VECTOR)(0, pointer)
+// ROW_VECTOR values of any type (float, or a quantized field's char / short) as floats.
+#define load_row_floats(pointer) ROW_CAT(convert_float, ROW_VECTOR)(load_rows(pointer))
 #define store_rows(value, pointer) ROW_CAT(vstore, ROW_VECTOR)(value, 0, pointer)
 #define to_row_ints(value) ROW_CAT(convert_int, ROW_VECTOR)(value)
 #if ROW_VECTOR == 4
@@ -189,18 +204,18 @@ typedef ROW_CAT(int, ROW_VECTOR) row_ints;
 
 // One residual entry of ROW_VECTOR rows times the light vector.
 inline row_floats residual_term(const uint entry, const row_ints c,
-                                __global const float* residual_values,
+                                __global const RESIDUAL_T* residual_values,
                                 __global const LIGHT_T* residual_lights,
                                 __global const float* light) {
   const row_ints index = to_row_ints(load_rows(residual_lights + entry)) * CHANNELS + c;
-  return load_rows(residual_values + entry) * gather(light, index);
+  return load_row_floats(residual_values + entry) * gather(light, index);
 }
 
 // The first min(group width, cap) entries of ROW_VECTOR rows starting at `first` (inside one
 // group) in one residual region (groups of group_rows rows) times the light vector.
 inline row_floats region_of_rows(const uint first, const uint group_rows, const row_ints c,
                                  const uint cap, __global const uint* offsets,
-                                 __global const float* residual_values,
+                                 __global const RESIDUAL_T* residual_values,
                                  __global const LIGHT_T* residual_lights,
                                  __global const float* light) {
   const uint group = first / group_rows;
@@ -222,7 +237,7 @@ inline row_floats region_of_rows(const uint first, const uint group_rows, const 
 inline row_floats residual_of_rows(const uint first, const row_ints c, const uint cap,
                                    __global const uint* slice_offsets,
                                    __global const uint* tail_offsets,
-                                   __global const float* residual_values,
+                                   __global const RESIDUAL_T* residual_values,
                                    __global const LIGHT_T* residual_lights,
                                    __global const float* light) {
   row_floats sums = region_of_rows(first, SLICE_ROWS, c, cap, slice_offsets, residual_values,
@@ -253,10 +268,10 @@ inline void write_rows(const uint first, const uint rows, const row_uints p, con
 
 __kernel void relight_rows(const uint rows, const uint frame_stride, const uint cap,
                            __global const uint* stored_function, __global const CLUSTER_T* cluster,
-                           __global const float* weights, __global const float* products,
+                           __global const WEIGHT_T* weights, __global const float* products,
                            __global const uint* slice_offsets,
                            __global const uint* tail_offsets,
-                           __global const float* residual_values,
+                           __global const RESIDUAL_T* residual_values,
                            __global const LIGHT_T* residual_lights, __global const float* light,
                            __global float* output) {
   const uint first = get_global_id(0) * ROW_VECTOR;
@@ -264,14 +279,14 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
   const row_uints p = load_rows(stored_function + first);
   const row_ints c = to_row_ints(p % CHANNELS);
   const row_ints product_index = to_row_ints(load_rows(cluster + first)) * (TERMS * CHANNELS) + c;
-  __global const float* row_weights =
+  __global const WEIGHT_T* row_weights =
       weights + (first / SLICE_ROWS) * (TERMS * SLICE_ROWS) + first % SLICE_ROWS;
   row_floats sums =
       residual_of_rows(first, c, cap, slice_offsets, tail_offsets, residual_values, residual_lights,
                        light);
   for (int j = 0; j < TERMS; ++j) {
     const row_ints index = product_index + j * CHANNELS;
-    sums += load_rows(row_weights + j * SLICE_ROWS) * gather(products, index);
+    sums += load_row_floats(row_weights + j * SLICE_ROWS) * gather(products, index);
   }
   write_rows(first, rows, p, sums, output);
 }
@@ -280,7 +295,7 @@ __kernel void residual_rows(const uint rows, const uint frame_stride, const uint
                             __global const uint* stored_function,
                             __global const uint* slice_offsets,
                             __global const uint* tail_offsets,
-                            __global const float* residual_values,
+                            __global const RESIDUAL_T* residual_values,
                             __global const LIGHT_T* residual_lights, __global const float* light,
                             __global float* output) {
   const uint first = get_global_id(0) * ROW_VECTOR;
@@ -296,10 +311,10 @@ __kernel void residual_rows(const uint rows, const uint frame_stride, const uint
 
 __kernel void relight_rows(const uint rows, const uint frame_stride, const uint cap,
                            __global const uint* stored_function, __global const CLUSTER_T* cluster,
-                           __global const float* weights, __global const float* products,
+                           __global const WEIGHT_T* weights, __global const float* products,
                            __global const uint* slice_offsets,
                            __global const uint* tail_offsets,
-                           __global const float* residual_values,
+                           __global const RESIDUAL_T* residual_values,
                            __global const LIGHT_T* residual_lights, __global const float* light,
                            __global float* output) {
   const uint row = get_global_id(0);
@@ -308,12 +323,12 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
   const uint c = p % CHANNELS;
   __global const float* row_products =
       products + ((uint)cluster[row] * TERMS * CHANNELS + c) * BATCH_PAD;
-  __global const float* row_weights =
+  __global const WEIGHT_T* row_weights =
       weights + (row / SLICE_ROWS) * (TERMS * SLICE_ROWS) + row % SLICE_ROWS;
   frames sums[BATCH_VECTORS];
   for (int v = 0; v < BATCH_VECTORS; ++v) sums[v] = (frames)(0.0f);
   for (int j = 0; j < TERMS; ++j) {
-    const float w = row_weights[j * SLICE_ROWS];
+    const float w = (float)row_weights[j * SLICE_ROWS];
     for (int v = 0; v < BATCH_VECTORS; ++v)
       sums[v] += w * load_frames(row_products + j * CHANNELS * BATCH_PAD + v * BATCH_WIDTH);
   }
@@ -326,7 +341,7 @@ __kernel void residual_rows(const uint rows, const uint frame_stride, const uint
                             __global const uint* stored_function,
                             __global const uint* slice_offsets,
                             __global const uint* tail_offsets,
-                            __global const float* residual_values,
+                            __global const RESIDUAL_T* residual_values,
                             __global const LIGHT_T* residual_lights, __global const float* light,
                             __global float* output) {
   const uint row = get_global_id(0);
@@ -340,3 +355,16 @@ __kernel void residual_rows(const uint rows, const uint frame_stride, const uint
 }
 
 #endif
+
+__kernel void dark_pixels(const uint runs_count, const uint frame_stride, __global const uint* runs,
+                          __global const float* dark, __global float* output) {
+  const uint run = get_global_id(0);
+  if (run >= runs_count) return;
+  const uint first = runs[2 * run], pixels = runs[2 * run + 1];
+  for (int b = 0; b < BATCH; ++b)
+    for (int c = 0; c < CHANNELS; ++c) {
+      const float value = dark[c * BATCH_PAD + b];
+      __global float* out = output + b * frame_stride + first * CHANNELS + c;
+      for (uint q = 0; q < pixels; ++q) out[q * CHANNELS] = value;
+    }
+}

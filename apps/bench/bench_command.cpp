@@ -16,6 +16,8 @@
 #include "command_registry.hpp"
 #include "core/progress.hpp"
 #include "json_report.hpp"
+#include "model/basis_alignment.hpp"
+#include "model/quantization.hpp"
 #include "model/random_compressed_field.hpp"
 
 namespace relume {
@@ -28,6 +30,7 @@ struct BenchOptions {
   int repeats = 9;
   int residual_cap = full_residual;
   RandomFieldShape shape;
+  std::string precision = "float32";  // of the random field's W and residual values
   std::string container;
   std::string original_field;
   int assign_rows = 16384;
@@ -91,12 +94,28 @@ void check_options(const BenchOptions& options) {
                 " (expected at least 1)");
   if (!options.original_field.empty() && options.container.empty())
     throw Error("--field " + options.original_field + " needs --container");
+  if (options.precision != "float32" && options.precision != "int16" && options.precision != "int8")
+    throw Error("--precision must be float32, int16 or int8, got '" + options.precision + "'");
+}
+
+// The random field stored as a quantized field would be: W and the residual values as integers of
+// the asked width (their largest |value| at 100 for int8, 30000 for int16) on aligned bases.
+CompressedField random_field(const BenchOptions& options) {
+  CompressedField field = random_compressed_field(options.shape);
+  if (options.precision == "float32") return field;
+  align_cluster_bases(field);
+  const float top = options.precision == "int8" ? 100.0f : 30000.0f;
+  float largest_residual = 0;
+  for (float v : field.residual.values) largest_residual = std::max(largest_residual, std::abs(v));
+  const float largest_weight = field.weights.size() ? field.weights.cwiseAbs().maxCoeff() : 0.0f;
+  return quantize_values(field, {largest_weight > 0 ? largest_weight / top : 0.0f,
+                                 largest_residual > 0 ? largest_residual / top : 0.0f, 0});
 }
 
 RelightSubject relight_subject(const BenchOptions& options) {
   RelightSubject subject;
   if (options.container.empty()) {
-    subject.field = random_compressed_field(options.shape);
+    subject.field = random_field(options);
     subject.points = {{options.residual_cap, {}, {}}};
     return subject;
   }
@@ -120,6 +139,7 @@ nlohmann::ordered_json field_json(const BenchOptions& options, const CompressedF
             {"terms", shape.terms},
             {"residual_per_function", shape.residual_per_function},
             {"stored_fraction", shape.stored_fraction},
+            {"precision", options.precision},
             {"stored_rows", field.stored_rows()},
             {"seed", shape.seed}};
   return {{"source", "container"},
@@ -296,6 +316,9 @@ const CommandRegistration registration{
                           "--clusters clusters of --terms terms (default 16384; 0 skips it)");
       command->add_option("--assign-candidates", options->assign_candidates,
                           "Candidate clusters fitted per row by the assignment (default 3)");
+      command->add_option("--precision", options->precision,
+                          "W and residual values of the random field: float32 (default), or the "
+                          "integers a quantized container holds, int16 or int8");
       command->add_option("--width", options->shape.width, "Image width (default 640)");
       command->add_option("--height", options->shape.height, "Image height (default 640)");
       command->add_option("--channels", options->shape.channels,

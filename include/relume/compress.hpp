@@ -25,7 +25,11 @@ struct CompressOptions {
   // the lights.
   int residual_entries = -1;
   double residual_percent = 5.0;
-  float residual_threshold = 0.0f;  // entries with |value| <= this (field units) are dropped
+  // Field units; negative: the field's noise floor (ReflectanceField::noise_floor). Pixels whose
+  // every channel has an RMS at or below noise_floor share one dark model; residual entries with
+  // |value| at or below residual_threshold are dropped.
+  float noise_floor = -1.0f;
+  float residual_threshold = -1.0f;
   BasisTransform transform = BasisTransform::identity;
   int multires_levels = 0;    // cluster a field downsampled 2x per level first
   int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering

@@ -2,8 +2,9 @@
 // factorization (paper Eq. 2):
 //   R[p,:] ~ W[p,:] * F^{c(p)} + E[p,:]
 // Only the functions that a scene needs are stored ("stored rows"): functions outside the mask and
-// all-zero functions have no row and relight to zero. This is what the container file holds and
-// what the relighting kernels read.
+// all-zero functions have no row and relight to zero, and pixels at the noise level ("dark
+// pixels") share one dark model per channel. This is what the container file holds and what the
+// relighting kernels read.
 //
 // reconstruct_field expands it back into a ReflectanceField; relative_error is the paper's error
 // measure (Eq. 16) between an original field and its compressed form.
@@ -67,6 +68,10 @@ struct CompressedField {
   std::vector<float> bases;  // clusters * terms * lights: F^k[j][i] at (k * terms + j) * lights + i
   ResidualRows residual;     // stored rows, in the transformed basis
   ValueQuantization quantization;
+  // The dark model: pixels whose functions are all at the noise level have no stored rows and
+  // relight as one shared function per channel, dark[c * lights + i] (in the transformed basis).
+  std::vector<std::uint32_t> dark_pixels;  // ascending pixel indices, inside the mask
+  std::vector<float> dark;                 // channels x lights, empty when no pixel is dark
 
   std::size_t stored_rows() const { return stored_function.size(); }
   std::int64_t functions() const { return std::int64_t(width) * height * channels; }
@@ -77,10 +82,10 @@ struct CompressedField {
 // |value| descending); -1 keeps all. Anything below -1 is refused.
 inline constexpr int all_residual_entries = -1;
 
-// The whole field in the original (light) basis: stored rows reconstructed and, for a Haar-stored
-// field, transformed back; functions that are not stored are zero. Mask, directions and
-// intensities are copied; image_names are left empty (write_field_folder names the images).
-// Throws Error for an inconsistent field (validate_compressed_field) or a cap below -1.
+// The whole field in the original (light) basis: stored rows reconstructed, dark pixels as the
+// dark model and, for a Haar-stored field, transformed back; other functions are zero. Mask,
+// directions and intensities are copied; image_names are left empty (write_field_folder names the
+// images). Throws Error for an inconsistent field (validate_compressed_field) or a cap below -1.
 ReflectanceField reconstruct_field(const CompressedField& field,
                                    int residual_cap = all_residual_entries);
 

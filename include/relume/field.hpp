@@ -36,6 +36,10 @@ struct ReflectanceField {
                                          // y up, z towards the camera)
   LightRgb intensities;                  // per-light RGB the images were divided by (ones if none)
   std::vector<std::string> image_names;  // one per light, for messages and write-back
+  // The quantization step of the images in field units: 1 / (2^bits - 1) for integer images
+  // (1/255 for 8 bits, 1/65535 for 16), divided by the mean light intensity; 0 for float images.
+  // Values below it are noise no compression needs to keep (compress's default noise floor).
+  float noise_floor = 0;
 
   int lights() const { return static_cast<int>(values.cols()); }
   std::int64_t functions() const { return values.rows(); }
@@ -53,6 +57,10 @@ struct FieldLoadOptions {
 // `path` is a field folder or an .lp file. Throws Error naming the file, line or pixel at fault.
 ReflectanceField load_field(const std::filesystem::path& path,
                             const FieldLoadOptions& options = {});
+
+// A mask image (any format; non-zero in any channel = inside) as width x height bytes of 0 / 1.
+// Throws Error naming the file when it cannot be read or has another size.
+std::vector<std::uint8_t> load_mask(const std::filesystem::path& path, int width, int height);
 
 // Writes a field folder that load_field reads back: one EXR per light (001.exr ...),
 // filenames.txt, light_directions.txt, light_intensities.txt (the field's intensities; its values

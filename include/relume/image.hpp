@@ -19,6 +19,7 @@ struct Image {
   int height = 0;
   int channels = 0;
   std::vector<float> pixels;  // (y * width + x) * channels + c
+  int source_bits = 0;        // read_image: the file's integer depth (8, 16, ...), 0 for floats
 
   Image() = default;
   Image(int w, int h, int c) : width(w), height(h), channels(c), pixels(std::size_t(w) * h * c) {}

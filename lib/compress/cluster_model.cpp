@@ -16,26 +16,48 @@ std::vector<std::vector<std::uint32_t>> ClusterModel::members() const {
   return lists;
 }
 
-PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, unsigned threads) {
+PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, float noise_floor,
+                          unsigned threads) {
   const int lights = field.lights();
   const bool masked = !field.mask.empty();
   if (masked && std::int64_t(field.mask.size()) != field.pixels())
     throw Error("field mask has " + std::to_string(field.mask.size()) + " pixels, expected " +
                 std::to_string(field.pixels()));
   PreparedRows prepared;
-  for (std::int64_t p = 0; p < field.functions(); ++p) {
-    if (masked && field.mask[std::size_t(p / field.channels)] == 0) continue;
-    const auto row = field.values.row(p);
-    bool nonzero = false;
-    for (int i = 0; i < lights; ++i) {
-      if (!std::isfinite(row[i]))
-        throw Error("reflectance function " + std::to_string(p) + " (pixel " +
-                    std::to_string(p / field.channels) + ", channel " +
-                    std::to_string(p % field.channels) + ") has a non-finite value " +
-                    std::to_string(row[i]) + " at light " + std::to_string(i));
-      nonzero = nonzero || row[i] != 0.0f;
+  const double floor_energy = double(noise_floor) * noise_floor * lights;
+  std::vector<double> dark_sum(std::size_t(field.channels) * lights, 0.0);
+  for (std::int64_t q = 0; q < field.pixels(); ++q) {
+    if (masked && field.mask[std::size_t(q)] == 0) continue;
+    bool dark = noise_floor > 0;
+    const std::size_t first = prepared.functions.size();
+    for (int c = 0; c < field.channels; ++c) {
+      const std::int64_t p = q * field.channels + c;
+      const auto row = field.values.row(p);
+      double energy = 0;
+      for (int i = 0; i < lights; ++i) {
+        if (!std::isfinite(row[i]))
+          throw Error("reflectance function " + std::to_string(p) + " (pixel " + std::to_string(q) +
+                      ", channel " + std::to_string(c) + ") has a non-finite value " +
+                      std::to_string(row[i]) + " at light " + std::to_string(i));
+        energy += double(row[i]) * row[i];
+      }
+      dark = dark && energy <= floor_energy;
+      if (energy > 0) prepared.functions.push_back(static_cast<std::uint32_t>(p));
     }
-    if (nonzero) prepared.functions.push_back(static_cast<std::uint32_t>(p));
+    if (!dark) continue;
+    prepared.functions.resize(first);  // the pixel's functions go to the dark model instead
+    prepared.dark_pixels.push_back(static_cast<std::uint32_t>(q));
+    for (int c = 0; c < field.channels; ++c)
+      for (int i = 0; i < lights; ++i)
+        dark_sum[std::size_t(c) * lights + i] += field.values(q * field.channels + c, i);
+  }
+  if (!prepared.dark_pixels.empty()) {
+    prepared.dark.resize(dark_sum.size());
+    for (std::size_t v = 0; v < dark_sum.size(); ++v)
+      prepared.dark[v] = float(dark_sum[v] / double(prepared.dark_pixels.size()));
+    if (haar_transform)
+      for (int c = 0; c < field.channels; ++c)
+        haar_forward(prepared.dark.data() + std::size_t(c) * lights, lights, 1);
   }
   WorkingRows& rows = prepared.rows;
   rows.values.resize(static_cast<Eigen::Index>(prepared.functions.size()), lights);

@@ -41,9 +41,17 @@ struct ClusterModel {
 struct PreparedRows {
   WorkingRows rows;
   std::vector<std::uint32_t> functions;  // working row -> function index p
+  // Pixels inside the mask whose every channel has an RMS over the lights at or below the noise
+  // floor: they get no rows, and relight as `dark` (channels x lights, their mean per channel, in
+  // the rows' basis).
+  std::vector<std::uint32_t> dark_pixels;
+  std::vector<float> dark;
 };
 
-// Throws Error naming the function and light of a NaN or Inf value.
-PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, unsigned threads);
+// The functions a compression stores: inside the mask, not all zero, not of a dark pixel (with
+// noise_floor > 0), scaled to unit norm, in the Haar basis if asked. Throws Error naming the
+// function and light of a NaN or Inf value.
+PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, float noise_floor,
+                          unsigned threads);
 
 }  // namespace relume

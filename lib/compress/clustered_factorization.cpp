@@ -33,9 +33,12 @@ void validate_options(const ReflectanceField& field, const CompressionOptions& o
   if (options.multires_levels < 0 || options.multires_levels > 8)
     throw Error("multi-resolution levels must be in [0, 8], got " +
                 std::to_string(options.multires_levels));
-  if (!(options.residual_threshold >= 0) || !std::isfinite(options.residual_threshold))
-    throw Error("residual threshold must be a finite value >= 0, got " +
+  if (std::isnan(options.residual_threshold) || !std::isfinite(options.residual_threshold))
+    throw Error("residual threshold must be a finite value (negative: the noise floor), got " +
                 std::to_string(options.residual_threshold));
+  if (std::isnan(options.noise_floor) || !std::isfinite(options.noise_floor))
+    throw Error("noise floor must be a finite value (negative: the field's), got " +
+                std::to_string(options.noise_floor));
   validate_size_limits(clustering.sizes, clustering.terms);
   if (options.method == CompressionMethod::cpca &&
       (options.multires_levels > 0 || clustering.exact_refit))
@@ -103,6 +106,8 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   out.directions = field.directions;
   out.intensities = field.intensities;
   out.stored_function = prepared.functions;
+  out.dark_pixels = prepared.dark_pixels;
+  out.dark = prepared.dark;
   out.cluster.assign(model.assignment.begin(), model.assignment.end());
   out.bases = model.bases;
   out.weights.resize(static_cast<Eigen::Index>(rows), terms);
@@ -167,13 +172,18 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   const ClusteringOptions& clustering = options.clustering;
   const bool haar = options.transform == BasisTransform::haar;
   auto start = Clock::now();
-  const PreparedRows prepared = prepare_rows(field, haar, clustering.threads);
+  stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : field.noise_floor;
+  stats.residual_threshold =
+      options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
+  const PreparedRows prepared = prepare_rows(field, haar, stats.noise_floor, clustering.threads);
   stats.functions = field.functions();
   stats.stored_rows = prepared.functions.size();
+  stats.dark_pixels = prepared.dark_pixels.size();
   if (!field.mask.empty()) {
     for (const auto inside : field.mask) stats.outside_mask += (inside == 0) * field.channels;
   }
-  stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows);
+  stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows) -
+                   std::int64_t(stats.dark_pixels) * field.channels;
   stats.clusters_asked = clustering.clusters;
   stats.prepare_seconds = seconds_since(start);
 
@@ -202,8 +212,8 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
                      hook);
   } else if (options.multires_levels > 0) {
     stats.multires.emplace();
-    model =
-        multires_start(field, prepared, options.multires_levels, haar, clustering, *stats.multires);
+    model = multires_start(field, prepared, options.multires_levels, haar, stats.noise_floor,
+                           clustering, *stats.multires);
     iterate_clusters(prepared.rows, model, clustering, options.refine_iterations, stats.clustering,
                      hook);
   } else if (options.method == CompressionMethod::cpca) {
@@ -221,7 +231,7 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   start = Clock::now();
   CompressedField out =
       build_compressed_field(field, prepared, model, options.transform, stats.residual_entries,
-                             options.residual_threshold, {}, stats, clustering.threads);
+                             stats.residual_threshold, {}, stats, clustering.threads);
   stats.residual_seconds = seconds_since(start);
   return out;
 }

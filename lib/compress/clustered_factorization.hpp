@@ -40,8 +40,12 @@ struct CompressionOptions {
   // Before the refit, also cluster by the other method (L1 or clustered PCA) and choose per
   // cluster between the two clusterings (choose_clusters).
   bool refit_chooses_clusters = false;
-  ResidualBudget residual;          // entries kept per function
-  float residual_threshold = 0.0f;  // entries with |value| <= this (field units) are dropped
+  ResidualBudget residual;  // entries kept per function
+  // Field units. The noise floor: pixels whose every channel has an RMS at or below it go to the
+  // dark model (PreparedRows). The threshold: residual entries with |value| at or below it are
+  // dropped. Negative: the field's own noise floor (ReflectanceField::noise_floor) for both.
+  float noise_floor = -1.0f;
+  float residual_threshold = -1.0f;
   BasisTransform transform = BasisTransform::identity;
   int multires_levels = 0;    // cluster a field downsampled this many times first
   int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering
@@ -62,6 +66,8 @@ struct CompressionStats {
   std::int64_t outside_mask = 0;
   std::int64_t all_zero = 0;
   std::size_t stored_rows = 0;
+  std::size_t dark_pixels = 0;                    // pixels relit by the dark model
+  float noise_floor = 0, residual_threshold = 0;  // as used
   int clusters_asked = 0;
   int clusters = 0;
   int residual_entries = 0;  // per function, from the budget

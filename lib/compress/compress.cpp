@@ -42,6 +42,7 @@ CompressedField compress(const ReflectanceField& field, const CompressOptions& o
   internal.residual = options.residual_entries >= 0 ? ResidualBudget{options.residual_entries}
                                                     : ResidualBudget{0, options.residual_percent};
   internal.residual_threshold = options.residual_threshold;
+  internal.noise_floor = options.noise_floor;
   internal.transform = options.transform;
   internal.multires_levels = options.multires_levels;
   internal.refine_iterations = options.refine_iterations;

@@ -66,7 +66,8 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
           {"terms", clustering.terms},
           {"residual", options.residual.describe()},
           {"residual_entries", stats.residual_entries},
-          {"residual_threshold", options.residual_threshold},
+          {"residual_threshold", stats.residual_threshold},
+          {"noise_floor", stats.noise_floor},
           {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
           {"solver", solver},
           {"multires_levels", options.multires_levels},
@@ -97,8 +98,8 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
     by_prefix[std::to_string(cap)] = relative_error(field, compressed, true, cap, run.threads).mean;
   }
   by_prefix[std::to_string(stats.residual_entries)] = masked.mean;
-  const Psnr8 psnr =
-      psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads);
+  const Psnr8 psnr = psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads,
+                               run.psnr_mask);
   const double error_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -144,7 +145,8 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
         {"functions", stats.functions},
         {"stored_rows", stats.stored_rows},
         {"outside_mask", stats.outside_mask},
-        {"all_zero", stats.all_zero}}},
+        {"all_zero", stats.all_zero},
+        {"dark_pixels", stats.dark_pixels}}},
       {"parameters", compression_parameters(*run.options, stats, run.solver)},
       {"residual_nonzeros", stats.residual_nonzeros},
       {"sparseness", sparseness},

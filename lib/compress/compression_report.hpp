@@ -27,6 +27,7 @@ struct CompressionRun {
   std::string solver;
   std::string assignment_device;  // "cpu" or the OpenCL device label
   double psnr_white = 1.0;        // the field value that is 255 in the 8-bit PSNR
+  std::vector<std::uint8_t> psnr_mask;  // the PSNR's "mask" region; empty: the field's mask
 };
 
 // The compression parameters recorded in the container header (a JSON object).

@@ -23,9 +23,9 @@ struct MultiresTrace {
 };
 
 // The full-resolution model (bases, assignment, weights) for `full`, the prepared rows of
-// `field`. `haar_transform` must match how `full` was prepared.
+// `field`. `haar_transform` and `noise_floor` must match how `full` was prepared.
 ClusterModel multires_start(const ReflectanceField& field, const PreparedRows& full, int levels,
-                            bool haar_transform, const ClusteringOptions& options,
-                            MultiresTrace& trace);
+                            bool haar_transform, float noise_floor,
+                            const ClusteringOptions& options, MultiresTrace& trace);
 
 }  // namespace relume

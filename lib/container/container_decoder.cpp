@@ -103,6 +103,7 @@ class ContainerDecoder {
     check_row_section_sizes(field, header);
     decode_mask(field);
     decode_functions(field, header);
+    if (parsed_.layout.version >= 2) decode_dark(field);
     decode_clusters(field, header);
     decode_bases(field);
     decode_weights(field, header);
@@ -245,6 +246,18 @@ class ContainerDecoder {
       in.fail("holds " + std::to_string(functions.size()) + " functions, the header says " +
               std::to_string(header.stored_rows) + " stored rows");
     field.stored_function.assign(functions.begin(), functions.end());
+  }
+
+  void decode_dark(CompressedField& field) const {
+    const std::uint64_t pixels = std::uint64_t(field.width) * field.height;
+    ByteReader set = reader("dark_pixels", bit_set_limit(pixels));
+    const std::vector<std::uint64_t> dark = decode_bit_set(set, pixels, pixels);
+    field.dark_pixels.assign(dark.begin(), dark.end());
+    ByteReader values = sized_reader(
+        "dark", {dark.empty() ? 0 : std::uint64_t(field.channels), std::uint64_t(field.lights), 4});
+    field.dark.resize(values.remaining() / 4);
+    for (float& v : field.dark) v = values.f32();
+    check_dark(field, where("dark_pixels"));
   }
 
   void decode_clusters(CompressedField& field, const DecodedHeader& header) const {

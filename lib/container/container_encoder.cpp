@@ -103,6 +103,9 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
   for (std::size_t q = 0; q < field.mask.size(); ++q)
     if (field.mask[q]) inside.push_back(q);
 
+  ByteWriter dark;
+  for (float v : field.dark) dark.f32(v);
+
   ByteWriter clusters;
   for (std::uint32_t k : field.cluster) clusters.unsigned_of_width(k, widths.cluster_id_bytes);
 
@@ -162,6 +165,12 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
                                                      field.stored_function.end()),
                           std::uint64_t(field.functions())),
            1},
+          {"dark_pixels",
+           encode_bit_set(
+               std::vector<std::uint64_t>(field.dark_pixels.begin(), field.dark_pixels.end()),
+               field.mask.size()),
+           1},
+          {"dark", dark.take(), 4},
           {"clusters", clusters.take(), widths.cluster_id_bytes},
           {"basis_scales", basis_scales.take(), 4},
           {"bases", bases.take(), basis_bytes},

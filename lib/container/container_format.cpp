@@ -78,9 +78,11 @@ const std::vector<std::string_view>& container_section_names(std::uint32_t versi
       "clusters",         "bases",          "weights", "residual_offsets",
       "residual_indices", "residual_values"};
   static const std::vector<std::string_view> version2{
-      "header",           "lights",           "mask",           "functions",
-      "clusters",         "basis_scales",     "bases",          "weights",
-      "residual_offsets", "residual_indices", "residual_values"};
+      "header",         "lights",           "mask",
+      "functions",      "dark_pixels",      "dark",
+      "clusters",       "basis_scales",     "bases",
+      "weights",        "residual_offsets", "residual_indices",
+      "residual_values"};
   return version == 1 ? version1 : version2;
 }
 

@@ -132,6 +132,8 @@ void check_finite(const Image& image, const fs::path& path) {
   }
 }
 
+}  // namespace
+
 std::vector<std::uint8_t> load_mask(const fs::path& path, int width, int height) {
   const Image image = read_image(path);
   if (image.width != width || image.height != height)
@@ -147,8 +149,6 @@ std::vector<std::uint8_t> load_mask(const fs::path& path, int width, int height)
   }
   return mask;
 }
-
-}  // namespace
 
 ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& options) {
   if (!fs::exists(path)) throw Error("reflectance field not found: " + path.string());
@@ -186,6 +186,9 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
 
   field.mask = source.mask.empty() ? std::vector<std::uint8_t>(field.pixels(), 1)
                                    : load_mask(source.mask, field.width, field.height);
+  if (first.source_bits > 0)
+    field.noise_floor =
+        float(1.0 / (std::ldexp(1.0, first.source_bits) - 1.0) / double(field.intensities.mean()));
   return field;
 }
 

@@ -31,6 +31,7 @@ Image read_image(const fs::path& path, const ImageReadOptions& options) {
   Image image(spec.width, spec.height, spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
     throw Error("cannot decode image " + path.string() + ": " + input->geterror());
+  if (!spec.format.is_floating_point()) image.source_bits = int(spec.format.size()) * 8;
   const bool eight_bit = spec.format.basetype == OIIO::TypeDesc::UINT8;
   if (eight_bit && options.eight_bit == EightBitEncoding::srgb)
     for (float& v : image.pixels) v = srgb_to_linear(v);

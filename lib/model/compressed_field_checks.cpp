@@ -167,6 +167,33 @@ void check_residual_values(const CompressedField& field, const std::string& wher
     }
 }
 
+void check_dark(const CompressedField& field, const std::string& where) {
+  const std::uint64_t pixels = std::uint64_t(field.width) * field.height;
+  std::size_t row = 0;
+  for (std::size_t d = 0; d < field.dark_pixels.size(); ++d) {
+    const std::uint32_t q = field.dark_pixels[d];
+    if (q >= pixels || (d > 0 && q <= field.dark_pixels[d - 1]))
+      throw Error(where + ": dark pixel " + std::to_string(d) + " is pixel " + std::to_string(q) +
+                  ", expected strictly ascending pixels below " + std::to_string(pixels));
+    if (!field.mask[q])
+      throw Error(where + ": dark pixel " + std::to_string(q) + " lies outside the mask");
+    while (row < field.stored_rows() && field.stored_function[row] / field.channels < q) ++row;
+    if (row < field.stored_rows() && field.stored_function[row] / field.channels == q)
+      throw Error(where + ": dark pixel " + std::to_string(q) + " also has " +
+                  stored_row_name(row) + ", expected a pixel to be stored or dark, not both");
+  }
+  const std::size_t expected =
+      field.dark_pixels.empty() ? 0 : std::size_t(field.channels) * field.lights;
+  if (field.dark.size() != expected)
+    throw Error(where + ": " + std::to_string(field.dark.size()) + " dark values, expected " +
+                std::to_string(expected) + " (channels x lights when any pixel is dark)");
+  for (std::size_t v = 0; v < field.dark.size(); ++v)
+    if (!std::isfinite(field.dark[v]))
+      throw Error(where + ": the dark value of channel " + std::to_string(v / field.lights) +
+                  " light " + std::to_string(v % field.lights) + " is " +
+                  std::to_string(field.dark[v]) + ", expected finite");
+}
+
 void validate_compressed_field(const CompressedField& field, const std::string& context) {
   check_dimensions(field, context);
   check_lights(field, context);
@@ -178,6 +205,7 @@ void validate_compressed_field(const CompressedField& field, const std::string& 
   check_residual_offsets(field, context);
   check_residual_indices(field, context);
   check_residual_values(field, context);
+  check_dark(field, context);
 }
 
 }  // namespace relume

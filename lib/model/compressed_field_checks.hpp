@@ -40,6 +40,10 @@ void check_residual_indices(const CompressedField& field, const std::string& whe
 // Finite values, each row sorted by |value| descending. Needs valid offsets.
 void check_residual_values(const CompressedField& field, const std::string& where);
 
+// Dark pixels strictly ascending, below width x height, inside the mask and without stored rows;
+// channels x lights finite dark values when any pixel is dark (none otherwise). Needs valid
+// functions and mask.
+void check_dark(const CompressedField& field, const std::string& where);
 // All of the above, in that order; `context` prefixes the message (for example "cannot write
 // scene.relume").
 void validate_compressed_field(const CompressedField& field, const std::string& context);

@@ -29,7 +29,7 @@ double psnr_of(const std::vector<double>& squared_error_per_light, double sample
 }  // namespace
 
 Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compressed, double white,
-                int residual_cap, unsigned threads) {
+                int residual_cap, unsigned threads, const std::vector<std::uint8_t>& mask) {
   if (!(white > 0) || !std::isfinite(white))
     throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
   if (residual_cap < all_residual_entries)
@@ -38,6 +38,10 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
   if (original.width != compressed.width || original.height != compressed.height ||
       original.channels != compressed.channels || original.lights() != compressed.lights)
     throw Error("cannot measure the PSNR: the original and the compressed field differ in shape");
+  const std::vector<std::uint8_t>& inside_mask = mask.empty() ? compressed.mask : mask;
+  if (inside_mask.size() != compressed.mask.size())
+    throw Error("cannot measure the PSNR inside a mask of " + std::to_string(inside_mask.size()) +
+                " pixels: the field has " + std::to_string(compressed.mask.size()));
   const int lights = compressed.lights;
   const double scale = 255.0 / white;
   const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
@@ -59,7 +63,7 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
       reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
                            approx[worker].data());
       const float* exact = original.values.row(Eigen::Index(p)).data();
-      const bool masked = compressed.mask[p / std::size_t(compressed.channels)] != 0;
+      const bool masked = inside_mask[p / std::size_t(compressed.channels)] != 0;
       inside_count[b] += masked;
       for (int i = 0; i < lights; ++i) {
         const double d = to_8bit(exact[i], scale) - to_8bit(approx[worker][i], scale);

@@ -92,19 +92,27 @@ std::string shape_text(int width, int height, int channels, int lights) {
 
 void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
                           double* sum, float* out) {
-  if (stored_row < 0) {
+  if (stored_row == unstored_row) {
     std::fill(out, out + field.lights, 0.0f);
     return;
   }
-  accumulate_stored_row(field, std::size_t(stored_row), residual_cap, sum);
-  std::copy(sum, sum + field.lights, out);
+  if (stored_row < 0) {  // dark_model_row(c)
+    const float* dark = field.dark.data() + std::size_t(-2 - stored_row) * field.lights;
+    std::copy(dark, dark + field.lights, out);
+  } else {
+    accumulate_stored_row(field, std::size_t(stored_row), residual_cap, sum);
+    std::copy(sum, sum + field.lights, out);
+  }
   if (field.transform == BasisTransform::haar) haar_inverse(out, field.lights, 1);
 }
 
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field) {
-  std::vector<std::int64_t> row_of(static_cast<std::size_t>(field.functions()), -1);
+  std::vector<std::int64_t> row_of(static_cast<std::size_t>(field.functions()), unstored_row);
   for (std::size_t r = 0; r < field.stored_rows(); ++r)
     row_of[field.stored_function[r]] = std::int64_t(r);
+  for (const std::uint32_t q : field.dark_pixels)
+    for (int c = 0; c < field.channels; ++c)
+      row_of[std::size_t(q) * field.channels + c] = dark_model_row(c);
   return row_of;
 }
 
@@ -136,6 +144,10 @@ ReflectanceField reconstruct_field(const CompressedField& field, int residual_ca
     reconstruct_function(field, std::int64_t(r), residual_cap, scratch[worker].data(),
                          result.values.row(field.stored_function[r]).data());
   });
+  for (const std::uint32_t q : field.dark_pixels)
+    for (int c = 0; c < field.channels; ++c)
+      reconstruct_function(field, dark_model_row(c), residual_cap, nullptr,
+                           result.values.row(Eigen::Index(q) * field.channels + c).data());
   return result;
 }
 

@@ -16,13 +16,18 @@ namespace relume {
 void reconstruct_stored_row(const CompressedField& field, std::size_t row, int residual_cap,
                             float* out);
 
-// Function p's reconstruction in the light basis into `out` (field.lights floats), given its
-// stored row (-1: not stored, so zero); `sum` is scratch of field.lights doubles. The field is
+// How stored_row_of_function marks a function without a stored row: -1 when it relights to zero,
+// dark_model_row(c) when it belongs to a dark pixel and relights as the dark model of channel c.
+inline constexpr std::int64_t unstored_row = -1;
+constexpr std::int64_t dark_model_row(int channel) { return -2 - channel; }
+
+// Function p's reconstruction in the light basis into `out` (field.lights floats), given what
+// stored_row_of_function says of it; `sum` is scratch of field.lights doubles. The field is
 // trusted (validated fields only).
 void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
                           double* sum, float* out);
 
-// Stored row of every function, -1 where the function is not stored.
+// Stored row of every function, or unstored_row / dark_model_row(c) where it has none.
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
 
 }  // namespace relume

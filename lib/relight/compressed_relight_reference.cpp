@@ -94,7 +94,22 @@ Image CompressedRelightReference::relight(const LightRgb& light, int residual_ca
           image.pixels[p] = static_cast<float>(sum);
         }
       });
+  if (terms == RelightTerms::all && !field.dark_pixels.empty()) {
+    const std::vector<double> dark = dark_light_products(field, basis_light);
+    for (const std::uint32_t q : field.dark_pixels)
+      for (int c = 0; c < field.channels; ++c)
+        image.pixels[std::size_t(q) * field.channels + c] = static_cast<float>(dark[c]);
+  }
   return image;
+}
+
+std::vector<double> dark_light_products(const CompressedField& field,
+                                        const RowMatrixF& basis_light) {
+  std::vector<double> products(field.dark.empty() ? 0 : field.channels, 0.0);
+  for (std::size_t c = 0; c < products.size(); ++c)
+    for (int i = 0; i < field.lights; ++i)
+      products[c] += double(field.dark[c * field.lights + i]) * basis_light(i, int(c));
+  return products;
 }
 
 Image relight_compressed_reference(const CompressedField& field, const LightRgb& light,

@@ -22,4 +22,8 @@ RowMatrixF light_in_field_basis(const CompressedField& field, const LightRgb& li
 std::vector<double> cluster_light_products(const CompressedField& field,
                                            const RowMatrixF& basis_light);
 
+// What every dark pixel's channel c relights to, dark[c] . I (empty without dark pixels).
+std::vector<double> dark_light_products(const CompressedField& field,
+                                        const RowMatrixF& basis_light);
+
 }  // namespace relume

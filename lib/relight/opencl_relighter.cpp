@@ -135,19 +135,40 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
       lay_out_field(field, {slice_rows_, tail_rows_, head_entries_}, lights_even_);
   head_ = layout.head;
   tail_ = layout.tail;
+  weight_bytes_ = layout.weights.bytes;
+  residual_value_bytes_ = layout.residual_values.bytes;
+  residual_scale_ = layout.residual_scale;
+  products_scale_ = (field.quantization.weight_step > 0 ? field.quantization.weight_step : 1.0f) /
+                    residual_scale_;
   stored_entries_ = layout.tail.offsets.back();
   nonzeros_ = field.residual.nonzeros();
   try {
     const cl::Context& cl_context = context.context();
     stored_function_ = upload(cl_context, layout.stored_function, device_bytes_);
     cluster_ = upload(cl_context, narrow_indices(layout.cluster, cluster_id_bytes_), device_bytes_);
-    weights_ = upload(cl_context, layout.weights, device_bytes_);
+    weights_ = upload(cl_context, layout.weights.data, device_bytes_);
     blocks_ = upload(cl_context, layout.blocks, device_bytes_);
     slice_offsets_ = upload(cl_context, layout.head.offsets, device_bytes_);
     tail_offsets_ = upload(cl_context, layout.tail.offsets, device_bytes_);
-    residual_values_ = upload(cl_context, layout.residual_values, device_bytes_);
+    residual_values_ = upload(cl_context, layout.residual_values.data, device_bytes_);
     residual_lights_ =
         upload(cl_context, narrow_indices(layout.residual_lights, light_id_bytes_), device_bytes_);
+    // Dark pixels as runs of consecutive pixels, each at most dark_run_pixels long so that the
+    // work-items' loops stay short.
+    constexpr std::uint32_t dark_run_pixels = 256;
+    std::vector<std::uint32_t> runs;
+    for (std::size_t d = 0; d < field.dark_pixels.size(); ++d) {
+      const std::uint32_t q = field.dark_pixels[d];
+      if (!runs.empty() && runs[runs.size() - 2] + runs.back() == q &&
+          runs.back() < dark_run_pixels)
+        ++runs.back();
+      else
+        runs.insert(runs.end(), {q, 1u});
+    }
+    dark_run_count_ = runs.size() / 2;
+    dark_pixel_count_ = field.dark_pixels.size();
+    dark_ = field.dark;
+    dark_runs_ = upload(cl_context, runs, device_bytes_);
   } catch (const cl::Error& error) {
     rethrow_opencl(error, context,
                    "uploading a compressed field of " + std::to_string(device_bytes_) + "+ bytes");
@@ -158,7 +179,8 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
       " -DTAIL_ROWS=" + std::to_string(tail_rows_) +
       " -DHEAD_ENTRIES=" + std::to_string(head_entries_) + "u" +
       " -DCLUSTER_T=" + index_type(cluster_id_bytes_) +
-      " -DLIGHT_T=" + index_type(light_id_bytes_) + " -DROW_VECTOR=" + std::to_string(row_vector_);
+      " -DLIGHT_T=" + index_type(light_id_bytes_) + " -DROW_VECTOR=" + std::to_string(row_vector_) +
+      " -DWEIGHT_T=" + layout.weights.type() + " -DRESIDUAL_T=" + layout.residual_values.type();
 }
 
 double OpenClRelighter::residual_padding() const {
@@ -170,7 +192,7 @@ std::uint64_t OpenClRelighter::residual_bytes(int residual_cap) const {
   const std::uint64_t slots =
       head_.slots_read(cap) +
       (reads_tail(residual_cap) ? tail_.slots_read(cap - head_entries_) : 0);
-  return slots * std::uint64_t(sizeof(float) + light_id_bytes_);
+  return slots * std::uint64_t(residual_value_bytes_ + light_id_bytes_);
 }
 
 bool OpenClRelighter::reads_tail(int residual_cap) const {
@@ -188,7 +210,10 @@ OpenClRelighter::BatchProgram& OpenClRelighter::batch_program(int batch) {
   if (shape_.terms > 0) program.gemv = context_.kernel("relight.cl", "cluster_products", options);
   program.relight_rows = context_.kernel("relight.cl", "relight_rows", options);
   program.residual_rows = context_.kernel("relight.cl", "residual_rows", options);
+  program.dark_pixels = context_.kernel("relight.cl", "dark_pixels", options);
   const cl::Context& cl_context = context_.context();
+  program.dark = cl::Buffer(cl_context, CL_MEM_READ_ONLY,
+                            std::size_t(shape_.channels) * program.batch_pad * sizeof(float));
   program.light = cl::Buffer(cl_context, CL_MEM_READ_ONLY, light_buffer_bytes(program));
   // A field without basis terms (residual only) still needs a valid buffer to bind.
   program.products = cl::Buffer(cl_context, CL_MEM_READ_WRITE,
@@ -210,7 +235,7 @@ std::uint64_t OpenClRelighter::products_bytes(const BatchProgram& program) const
 }
 
 void OpenClRelighter::upload_lights(BatchProgram& program,
-                                    const std::vector<const LightRgb*>& lights) {
+                                    const std::vector<const LightRgb*>& lights, Pass pass) {
   const int channels = shape_.channels;
   std::vector<float>& packed = program.staging;  // read by the write below until run_pass ends
   packed.assign(std::size_t(lights_even_) * channels * program.batch_pad, 0.0f);
@@ -218,10 +243,43 @@ void OpenClRelighter::upload_lights(BatchProgram& program,
     const RowMatrixF basis_light = light_in_field_basis(shape_, *lights[b]);
     for (int i = 0; i < shape_.lights; ++i)
       for (int c = 0; c < channels; ++c)
-        packed[(std::size_t(i) * channels + c) * program.batch_pad + b] = basis_light(i, c);
+        packed[(std::size_t(i) * channels + c) * program.batch_pad + b] =
+            basis_light(i, c) * residual_scale_;
   }
   context_.queue().enqueueWriteBuffer(program.light, CL_FALSE, 0, packed.size() * sizeof(float),
                                       packed.data());
+  if (dark_pixel_count_ == 0) return;
+  // Each frame's dark-model value per channel, dark[c] . I, computed here (lights x channels);
+  // zero for the residual term alone (the dark model is not residual).
+  std::vector<float>& dark = program.dark_staging;
+  dark.assign(std::size_t(channels) * program.batch_pad, 0.0f);
+  for (std::size_t b = 0; pass == Pass::relight && b < lights.size(); ++b) {
+    const RowMatrixF basis_light = light_in_field_basis(shape_, *lights[b]);
+    for (int c = 0; c < channels; ++c) {
+      double sum = 0;
+      for (int i = 0; i < shape_.lights; ++i)
+        sum += double(dark_[std::size_t(c) * shape_.lights + i]) * basis_light(i, c);
+      dark[std::size_t(c) * program.batch_pad + b] = float(sum);
+    }
+  }
+  context_.queue().enqueueWriteBuffer(program.dark, CL_FALSE, 0, dark.size() * sizeof(float),
+                                      dark.data());
+}
+
+OpenClRelighter::Launch OpenClRelighter::launch_dark(BatchProgram& program) {
+  cl::Kernel& kernel = program.dark_pixels;
+  kernel.setArg(0, cl_uint(dark_run_count_));
+  kernel.setArg(1, cl_uint(frame_stride_));
+  kernel.setArg(2, dark_runs_);
+  kernel.setArg(3, program.dark);
+  kernel.setArg(4, program.output);
+  cl::Event event;
+  context_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dark_run_count_),
+                                        cl::NullRange, nullptr, &event);
+  KernelTiming timing{"dark", 0, 0};
+  timing.bytes = dark_run_count_ * 8 + std::uint64_t(shape_.channels) * program.batch_pad * 4 +
+                 dark_pixel_count_ * shape_.channels * std::uint64_t(program.batch) * sizeof(float);
+  return {timing, event};
 }
 
 OpenClRelighter::Launch OpenClRelighter::launch_gemv(BatchProgram& program) {
@@ -274,7 +332,7 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
   // Per row: its function index, its output per frame; with the basis also its cluster id and
   // weights. Shared by all rows: the group offsets, the light vectors and the products (cached).
   std::uint64_t per_row = sizeof(std::uint32_t) + std::uint64_t(program.batch) * sizeof(float);
-  if (with_basis) per_row += cluster_id_bytes_ + std::uint64_t(shape_.terms) * sizeof(float);
+  if (with_basis) per_row += cluster_id_bytes_ + std::uint64_t(shape_.terms) * weight_bytes_;
   timing.bytes = rows_ * per_row + residual_bytes(residual_cap) +
                  (head_.offsets.size() + (reads_tail(residual_cap) ? tail_.offsets.size() : 0)) *
                      sizeof(std::uint32_t) +
@@ -288,12 +346,13 @@ void OpenClRelighter::run_pass(const std::vector<const LightRgb*>& lights, int r
   // Everything is enqueued without waiting (the queue is in order) and finished once at the end;
   // on failure the queue is drained before the error leaves, so nothing writes into `images` later.
   try {
-    upload_lights(program, lights);
+    upload_lights(program, lights, pass);
     std::vector<Launch> launches;
     const bool has_basis = shape_.terms > 0 && shape_.clusters > 0;
     if (has_basis && pass != Pass::residual) launches.push_back(launch_gemv(program));
     if (pass != Pass::products && rows_ > 0)
       launches.push_back(launch_rows(program, pass, residual_cap));
+    if (pass != Pass::products && dark_run_count_ > 0) launches.push_back(launch_dark(program));
     const std::size_t functions = std::size_t(shape_.functions());
     for (std::size_t b = 0; pass != Pass::products && b < lights.size(); ++b) {
       Image& image = images[b];
@@ -384,6 +443,8 @@ std::vector<float> OpenClRelighter::cluster_products(const LightRgb& light) {
     if (!products.empty())
       context_.queue().enqueueReadBuffer(program.products, CL_TRUE, 0,
                                          products.size() * sizeof(float), products.data());
+    // The device's products carry the layout's step factors (relight_layout.hpp): undo them.
+    for (float& v : products) v /= products_scale_ * residual_scale_;
     last_timing_.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return products;

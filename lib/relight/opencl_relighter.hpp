@@ -84,6 +84,9 @@ class OpenClRelighter {
   int row_vector() const { return row_vector_; }
   // Residual entries per row in the slices (the rest in row-vector groups); unlimited off CPUs.
   std::uint32_t head_entries() const { return head_entries_; }
+  // Bytes per weight and per residual value on the device: 4 (float), 2 (int16) or 1 (int8).
+  int weight_bytes() const { return weight_bytes_; }
+  int residual_value_bytes() const { return residual_value_bytes_; }
   // Field data held on the device, in bytes.
   std::uint64_t device_bytes() const { return device_bytes_; }
   // Entries of the longest residual row, and the share of stored residual slots that are zero
@@ -102,10 +105,13 @@ class OpenClRelighter {
     cl::Kernel gemv;
     cl::Kernel relight_rows;
     cl::Kernel residual_rows;
-    cl::Buffer light;            // lights_even * channels * batch_pad
-    cl::Buffer products;         // clusters * terms * channels * batch_pad
-    cl::Buffer output;           // batch * frame_stride_, zero where no row is stored
-    std::vector<float> staging;  // host copy of `light` while it is being written
+    cl::Kernel dark_pixels;
+    cl::Buffer light;  // lights_even * channels * batch_pad
+    cl::Buffer dark;   // channels * batch_pad: each frame's dark-model value per channel
+    std::vector<float> dark_staging;  // host copy of `dark` while it is being written
+    cl::Buffer products;              // clusters * terms * channels * batch_pad
+    cl::Buffer output;                // batch * frame_stride_, zero where no row is stored
+    std::vector<float> staging;       // host copy of `light` while it is being written
   };
   struct Launch {
     KernelTiming timing;  // seconds filled in once the launch has finished
@@ -114,9 +120,10 @@ class OpenClRelighter {
   enum class Pass { relight, residual, products };
 
   BatchProgram& batch_program(int batch);
-  void upload_lights(BatchProgram& program, const std::vector<const LightRgb*>& lights);
+  void upload_lights(BatchProgram& program, const std::vector<const LightRgb*>& lights, Pass pass);
   Launch launch_gemv(BatchProgram& program);
   Launch launch_rows(BatchProgram& program, Pass pass, int residual_cap);
+  Launch launch_dark(BatchProgram& program);
   // Relights lights into images[first, first + lights.size()).
   void run_pass(const std::vector<const LightRgb*>& lights, int residual_cap, Pass pass,
                 Image* images);
@@ -131,6 +138,10 @@ class OpenClRelighter {
   int lights_even_ = 0;
   int cluster_id_bytes_ = 4;
   int light_id_bytes_ = 4;
+  int weight_bytes_ = 4;          // W as the device holds it: float, int16 or int8
+  int residual_value_bytes_ = 4;  // likewise the residual values
+  float residual_scale_ = 1;      // the light vector's factor on upload (relight_layout.hpp)
+  float products_scale_ = 1;      // the blocks' factor: weight step / residual_scale_
   std::string base_options_;
   std::size_t work_group_rows_ = 0;
   int row_vector_ = 1;
@@ -147,6 +158,10 @@ class OpenClRelighter {
   cl::Buffer tail_offsets_;
   cl::Buffer residual_values_;
   cl::Buffer residual_lights_;
+  cl::Buffer dark_runs_;  // (first pixel, pixels) of each run of dark pixels
+  std::size_t dark_run_count_ = 0;
+  std::uint64_t dark_pixel_count_ = 0;
+  std::vector<float> dark_;     // the field's dark model, channels x lights
   ResidualRegion head_, tail_;  // the residual's layout (their offsets are uploaded too)
   int widest_row_ = 0;
   std::uint64_t stored_entries_ = 0;  // residual slots on the device, padding included

@@ -2,6 +2,8 @@
 #include "relight/relight_layout.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <relume/error.hpp>
 
 namespace relume {
@@ -36,9 +38,33 @@ ResidualRegion plan_region(const CompressedField& field, int group_rows, std::ui
   return region;
 }
 
+// `values` as the kernels store them: float when `step` is 0, else their integers (value / step,
+// exact for a quantized field) in the narrowest of int8 and int16 that holds them all.
+StoredValues store_values(const std::vector<float>& values, float step) {
+  StoredValues stored;
+  if (step <= 0) {
+    stored.data.resize(values.size() * 4);
+    std::memcpy(stored.data.data(), values.data(), stored.data.size());
+    return stored;
+  }
+  std::vector<std::int32_t> integers(values.size());
+  std::int32_t largest = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    integers[i] = std::int32_t(std::lround(values[i] / step));
+    largest = std::max(largest, std::abs(integers[i]));
+  }
+  stored.bytes = largest <= 127 ? 1 : 2;
+  stored.data.resize(values.size() * std::size_t(stored.bytes));
+  for (std::size_t i = 0; i < values.size(); ++i)
+    for (int b = 0; b < stored.bytes; ++b)
+      stored.data[i * stored.bytes + b] = std::uint8_t(std::uint32_t(integers[i]) >> (8 * b));
+  return stored;
+}
+
 // Copies the region's entries of every row into their slots.
 void fill_region(const CompressedField& field, const ResidualRegion& region,
-                 std::uint32_t first_entry, RelightLayout& layout) {
+                 std::uint32_t first_entry, std::vector<float>& values,
+                 std::vector<std::uint32_t>& lights) {
   const auto& residual = field.residual;
   const std::size_t group_rows = std::size_t(region.group_rows);
   for (std::size_t s = 0; s < field.stored_rows(); ++s) {
@@ -48,8 +74,8 @@ void fill_region(const CompressedField& field, const ResidualRegion& region,
     for (std::uint32_t e = first_entry; e < std::min(length, first_entry + region.width[g]); ++e) {
       const std::size_t slot =
           region.offsets[g] + std::size_t(e - first_entry) * group_rows + s % group_rows;
-      layout.residual_values[slot] = residual.values[begin + e];
-      layout.residual_lights[slot] = residual.light_index[begin + e];
+      values[slot] = residual.values[begin + e];
+      lights[slot] = residual.light_index[begin + e];
     }
   }
 }
@@ -75,21 +101,27 @@ RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutSha
   std::copy(field.stored_function.begin(), field.stored_function.end(),
             layout.stored_function.begin());
   std::copy(field.cluster.begin(), field.cluster.end(), layout.cluster.begin());
-  layout.weights.assign(slices * slice * terms, 0.0f);
+  std::vector<float> weights(slices * slice * terms, 0.0f);
   for (std::size_t s = 0; s < rows; ++s)
     for (int j = 0; j < terms; ++j)
-      layout.weights[(s / slice * terms + j) * slice + s % slice] =
-          field.weights(Eigen::Index(s), j);
+      weights[(s / slice * terms + j) * slice + s % slice] = field.weights(Eigen::Index(s), j);
+  const ValueQuantization& quantization = field.quantization;
+  layout.weights = store_values(weights, quantization.weight_step);
 
   const std::uint32_t head_entries = shape.tail_rows > 0 ? shape.head_entries : 0xffffffffu;
   layout.head = plan_region(field, shape.slice_rows, 0, head_entries, 0);
   // Without a tail every group of the tail region is empty.
   layout.tail = plan_region(field, shape.tail_rows > 0 ? shape.tail_rows : shape.slice_rows,
                             head_entries, 0xffffffffu, layout.head.offsets.back());
-  layout.residual_values.assign(layout.tail.offsets.back(), 0.0f);
+  std::vector<float> residual_values(layout.tail.offsets.back(), 0.0f);
   layout.residual_lights.assign(layout.tail.offsets.back(), 0);
-  fill_region(field, layout.head, 0, layout);
-  if (shape.tail_rows > 0) fill_region(field, layout.tail, head_entries, layout);
+  fill_region(field, layout.head, 0, residual_values, layout.residual_lights);
+  if (shape.tail_rows > 0)
+    fill_region(field, layout.tail, head_entries, residual_values, layout.residual_lights);
+  layout.residual_values = store_values(residual_values, quantization.residual_step);
+  layout.residual_scale = quantization.residual_step > 0 ? quantization.residual_step : 1.0f;
+  const float block_scale =
+      (quantization.weight_step > 0 ? quantization.weight_step : 1.0f) / layout.residual_scale;
 
   // Block (jb, ib) holds (F[2jb][2ib], F[2jb][2ib+1], F[2jb+1][2ib], F[2jb+1][2ib+1]).
   const int term_pairs = (terms + 1) / 2;
@@ -100,7 +132,7 @@ RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutSha
       for (int i = 0; i < field.lights; ++i) {
         const std::size_t block = (std::size_t(k) * term_pairs + j / 2) * light_pairs + i / 2;
         layout.blocks[block * 4 + (j % 2) * 2 + i % 2] =
-            field.basis(k)[std::size_t(j) * field.lights + i];
+            field.basis(k)[std::size_t(j) * field.lights + i] * block_scale;
       }
   return layout;
 }

@@ -32,14 +32,26 @@ struct RelightLayoutShape {
   std::uint32_t head_entries = 0xffffffffu;  // entries per row in the head
 };
 
+// W and the residual values as the kernels read them: float, or for a quantized field its
+// integers (int8 when they fit, else int16) with the steps folded into the other factor: the
+// blocks hold F^k x weight_step / residual_scale and the light vector is uploaded times
+// residual_scale, so that W . (F I) and E . I come out in field units with no extra multiply.
+struct StoredValues {
+  int bytes = 4;                   // 4 (float), 2 (int16) or 1 (int8)
+  std::vector<std::uint8_t> data;  // little-endian values of `bytes` bytes each
+
+  const char* type() const { return bytes == 4 ? "float" : bytes == 2 ? "short" : "char"; }
+};
+
 struct RelightLayout {
   std::vector<std::uint32_t> stored_function;  // padded to whole slices
   std::vector<std::uint32_t> cluster;          // padded to whole slices
-  std::vector<float> weights;                  // slot-major inside each slice
+  StoredValues weights;                        // slot-major inside each slice
   ResidualRegion head, tail;                   // the tail's slots follow the head's
-  std::vector<float> residual_values;          // zero padded
+  StoredValues residual_values;                // zero padded
   std::vector<std::uint32_t> residual_lights;
   std::vector<float> blocks;  // F^k in 2x2 blocks, zero-padded to even terms and lights
+  float residual_scale = 1;   // the light vector's factor (the residual step, or 1)
 };
 
 RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutShape& shape,

@@ -49,13 +49,14 @@ void bind_compress(py::module_& module) {
   module.def(
       "compress",
       [](py::object field, py::object dirs, py::object mask, py::object intensities, int clusters,
-         int terms, py::object residual, float threshold, const std::string& solver,
-         const std::string& transform, int multires, int refine, int iterations, int candidates,
-         int irls_iterations, std::optional<int> min_cluster_size, int max_cluster_size,
-         std::uint64_t seed, unsigned threads, const std::string& assign, const std::string& device,
-         const std::string& weights_precision, const std::string& residual_precision,
-         const std::string& bases_precision, double quantization_budget,
-         std::optional<double> target_error, bool quiet, py::object progress) {
+         int terms, py::object residual, float threshold, float noise_floor,
+         const std::string& solver, const std::string& transform, int multires, int refine,
+         int iterations, int candidates, int irls_iterations, std::optional<int> min_cluster_size,
+         int max_cluster_size, std::uint64_t seed, unsigned threads, const std::string& assign,
+         const std::string& device, const std::string& weights_precision,
+         const std::string& residual_precision, const std::string& bases_precision,
+         double quantization_budget, std::optional<double> target_error, bool quiet,
+         py::object progress) {
         std::optional<ReflectanceField> from_arrays;
         if (!py::isinstance<ReflectanceField>(field))
           from_arrays = field_from(field, dirs, mask, intensities);
@@ -73,6 +74,7 @@ void bind_compress(py::module_& module) {
         options.residual_entries = budget.percent < 0 ? budget.entries : -1;
         options.residual_percent = budget.percent < 0 ? 0.0 : budget.percent;
         options.residual_threshold = threshold;
+        options.noise_floor = noise_floor;
         options.solver = solver;
         options.transform = one_of("transform", transform, "identity", "haar") == "haar"
                                 ? BasisTransform::haar
@@ -124,13 +126,13 @@ void bind_compress(py::module_& module) {
       },
       "field"_a, "dirs"_a = py::none(), py::kw_only(), "mask"_a = py::none(),
       "intensities"_a = py::none(), "clusters"_a = 64, "terms"_a = 4, "residual"_a = "5%",
-      "threshold"_a = 0.0f, "solver"_a = "irls", "transform"_a = "identity", "multires"_a = 0,
-      "refine"_a = 2, "iterations"_a = 4, "candidates"_a = 3, "irls_iterations"_a = 5,
-      "min_cluster_size"_a = py::none(), "max_cluster_size"_a = 0, "seed"_a = 1, "threads"_a = 0,
-      "assign"_a = "opencl", "device"_a = "", "weights_precision"_a = "quantized",
-      "residual_precision"_a = "quantized", "bases_precision"_a = "quantized",
-      "quantization_budget"_a = 0.01, "target_error"_a = py::none(), "quiet"_a = true,
-      "progress"_a = py::none(),
+      "threshold"_a = -1.0f, "noise_floor"_a = -1.0f, "solver"_a = "irls",
+      "transform"_a = "identity", "multires"_a = 0, "refine"_a = 2, "iterations"_a = 4,
+      "candidates"_a = 3, "irls_iterations"_a = 5, "min_cluster_size"_a = py::none(),
+      "max_cluster_size"_a = 0, "seed"_a = 1, "threads"_a = 0, "assign"_a = "opencl",
+      "device"_a = "", "weights_precision"_a = "quantized", "residual_precision"_a = "quantized",
+      "bases_precision"_a = "quantized", "quantization_budget"_a = 0.01,
+      "target_error"_a = py::none(), "quiet"_a = true, "progress"_a = py::none(),
       R"(Compress a reflectance field by clustered sparse residual factorization, as
 `relume compress` does (same options, same defaults, same result for the same seed; the
 command's -o, --report and --resume have no counterpart: save() writes the container).
@@ -140,7 +142,9 @@ field: a relume.Field, or values float32 (height, width, channels, lights) with 
 copied once into a field.
 clusters, terms: K clusters of t basis functions each (t in 1..16, fewer than the lights).
 residual: entries kept per function, a count (12) or a percentage of the lights ("5%").
-threshold: drop residual entries with |value| <= threshold (field units).
+threshold: drop residual entries with |value| <= threshold (field units; negative: the
+noise floor). noise_floor: pixels whose every channel has an RMS at or below it share one dark
+model (field units; negative: the field's own, its images' quantization step).
 solver: "irls" (the fast IRLS fits only) or "lp-dual", "lp", "huber": refit every cluster
 exactly with that solver after the iterations.
 transform: "identity" or "haar" (the factorization in an orthonormal Haar basis).

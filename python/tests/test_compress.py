@@ -96,7 +96,7 @@ def test_the_gil_is_released_while_compressing(field):
     ({"solver": "simplex"}, "unknown L1 solver 'simplex'"),
     ({"weights_precision": "float8"}, 'unknown precision "float8"'),
     ({"target_error": -0.1}, "target_error must be a relative error > 0"),
-    ({"threshold": float("nan")}, "residual threshold must be a finite value >= 0"),
+    ({"threshold": float("nan")}, "residual threshold must be a finite value (negative: the noise floor)"),
     ({"progress": 3}, "progress must be a callable"),
 ])
 def test_bad_options_raise_relume_errors(field, options, message):

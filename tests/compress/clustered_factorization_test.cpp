@@ -186,7 +186,7 @@ TEST(ClusteredFactorization, SmallClustersMergeIntoTheClusterThatFitsTheirRows) 
   // Rows from two planted subspaces; a third cluster holds 5 rows of subspace 0 with a random
   // basis. With a minimum of 10 it is dissolved and its rows join cluster 0.
   const PlantedField planted = planted_field(10, 10, 2, 2, 32, 0, 29);
-  const PreparedRows prepared = prepare_rows(planted.field, false, 1);
+  const PreparedRows prepared = prepare_rows(planted.field, false, 0.0f, 1);
   ClusterModel model;
   model.terms = 2;
   model.lights = 32;

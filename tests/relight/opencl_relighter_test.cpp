@@ -2,7 +2,8 @@
 // reconstruction, and every OpenCL relighting kernel (GEMV, residual SpMV, relight, batched
 // relight) on PoCL against the reference with fresh random fields and light vectors: residual
 // caps of 0, below and above the row lengths, empty rows, unstored functions, odd term and light
-// counts, grey fields, the Haar basis, every row-vector width, slice height and head/tail split.
+// counts, grey fields, the Haar basis, every row-vector width, slice height and head/tail split,
+// and quantized fields (int8 / int16 weights and residual values) at every term count.
 #include "relight/opencl_relighter.hpp"
 
 #include <gtest/gtest.h>
@@ -10,7 +11,9 @@
 #include <cmath>
 #include <relume/error.hpp>
 
+#include "model/basis_alignment.hpp"
 #include "model/haar_transform.hpp"
+#include "model/quantization.hpp"
 #include "model/random_compressed_field.hpp"
 #include "relight/compressed_relight_reference.hpp"
 #include "support/test_support.hpp"
@@ -126,6 +129,70 @@ TEST(OpenClRelighter, MatchesTheReferenceForEveryResidualCap) {
     const Image image = relighter.relight(light, cap);
     EXPECT_LT(relative_error(image, expected), float_tolerance) << "cap " << cap;
     expect_unstored_zero(field, image);
+  }
+}
+
+// Quantized fields relight from their integers (relight_layout.hpp folds the steps into the
+// blocks and the light vector): int8 and int16 weights and residual values, alone and together,
+// at term counts 1 to 5, single and batched, against the reference on the same field.
+TEST(OpenClRelighter, QuantizedFieldsRelightFromTheirIntegersAtEveryPrecision) {
+  // Bytes per stored value: 4 float, 2 int16, 1 int8.
+  struct Precision {
+    int weight_bytes, residual_bytes;
+  };
+  const Precision precisions[] = {{1, 4}, {2, 4}, {4, 1}, {4, 2}, {1, 2}, {2, 1}};
+  // The step that puts the largest |value| at 100 (int8) or 20000 (int16); 0 keeps floats.
+  auto step_for = [](float largest, int bytes) {
+    return bytes == 4 ? 0.0f : largest / (bytes == 1 ? 100.0f : 20000.0f);
+  };
+  // Every precision and every term count, each kernel build once (PoCL builds are slow): terms
+  // 1 to 5 with the precisions in turn, and the last precision with 3 terms.
+  for (std::size_t config = 0; config < std::size(precisions); ++config) {
+    const Precision& precision = precisions[config];
+    const int terms = config < 5 ? int(config) + 1 : 3;
+    RandomFieldShape shape = small_shape(300 + std::uint64_t(terms));
+    shape.terms = terms;
+    CompressedField field = random_compressed_field(shape);
+    align_cluster_bases(field);
+    float largest_residual = 0;
+    for (float v : field.residual.values)
+      largest_residual = std::max(largest_residual, std::abs(v));
+    const float weight_step = step_for(field.weights.cwiseAbs().maxCoeff(), precision.weight_bytes);
+    const float residual_step = step_for(largest_residual, precision.residual_bytes);
+    field = quantize_values(field, {weight_step, residual_step, 0});
+    OpenClRelighterOptions options;
+    options.max_batch = 4;
+    OpenClRelighter relighter(pocl(), field, options);
+    const std::string what = std::to_string(terms) + " terms, " +
+                             std::to_string(precision.weight_bytes) + "-byte weights, " +
+                             std::to_string(precision.residual_bytes) + "-byte residual";
+    std::vector<LightRgb> lights;
+    for (int b = 0; b < 4; ++b)
+      lights.push_back(random_light_vector(field.lights, 700 + std::uint64_t(terms * 10 + b)));
+    for (const int cap : {0, 3, full_residual}) {
+      const Image single = relighter.relight(lights[0], cap);
+      EXPECT_LT(relative_error(single, relight_compressed_reference(field, lights[0], cap)),
+                float_tolerance)
+          << what << ", cap " << cap;
+      expect_unstored_zero(field, single);
+      const std::vector<Image> batch = relighter.relight_batch(lights, cap);
+      for (int b = 0; b < 4; ++b)
+        EXPECT_LT(relative_error(batch[std::size_t(b)],
+                                 relight_compressed_reference(field, lights[std::size_t(b)], cap)),
+                  float_tolerance)
+            << what << ", cap " << cap << ", frame " << b;
+    }
+    // The products come back in field units whatever the steps folded into the blocks.
+    const LightRgb& light = lights[1];
+    const std::vector<double> expected =
+        cluster_light_products(field, light_in_field_basis(field, light));
+    const std::vector<float> products = relighter.cluster_products(light);
+    ASSERT_EQ(products.size(), expected.size());
+    for (std::size_t i = 0; i < products.size(); ++i)
+      EXPECT_NEAR(products[i], expected[i], 1e-4 * (1 + std::abs(expected[i]))) << what;
+    // The kernels read the integers, in the narrowest type that holds them.
+    EXPECT_EQ(relighter.weight_bytes(), precision.weight_bytes) << what;
+    EXPECT_EQ(relighter.residual_value_bytes(), precision.residual_bytes) << what;
   }
 }
 
