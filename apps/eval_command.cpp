@@ -205,7 +205,7 @@ void run_eval(EvalArguments& arguments) {
       throw Error("--terms " + std::to_string(terms) + " (expected 1 to " +
                   std::to_string(std::min(max_cluster_terms, field.lights() - 1)) + " for " +
                   std::to_string(field.lights()) + " lights)");
-  const PreparedRows prepared = prepare_rows(field, false, arguments.threads);
+  const PreparedRows prepared = prepare_rows(field, false, field.noise_floor, arguments.threads);
   if (prepared.functions.empty())
     throw Error(arguments.input + ": no function to evaluate (all are outside the mask or zero)");
   const FunctionClasses classes =
@@ -355,8 +355,8 @@ void run_eval(EvalArguments& arguments) {
   const auto store = [&](const EvalRun& run, int entries) {
     CompressionStats stats;
     CompressedField stored =
-        build_compressed_field(field, prepared, run.model, BasisTransform::identity, entries, 0.0f,
-                               {}, stats, arguments.threads);
+        build_compressed_field(field, prepared, run.model, BasisTransform::identity, entries,
+                               field.noise_floor, {}, stats, arguments.threads);
     store_with_precision(field, stored, precision);
     return stored;
   };
@@ -488,7 +488,9 @@ void run_eval(EvalArguments& arguments) {
         {"height", field.height},
         {"channels", field.channels},
         {"lights", field.lights()},
-        {"stored_functions", prepared.functions.size()}}},
+        {"stored_functions", prepared.functions.size()},
+        {"noise_floor", field.noise_floor},
+        {"dark_pixels", prepared.dark_pixels.size()}}},
       {"settings",
        {{"clusters", arguments.clusters},
         {"terms", arguments.terms},
@@ -511,8 +513,9 @@ void run_eval(EvalArguments& arguments) {
         {"diffuse", classes.diffuse_count},
         {"specular_or_shadowed", prepared.functions.size() - classes.diffuse_count}}},
       {"error_measure",
-       "paper Eq. 16 over the stored (masked, non-zero) functions, float values "
-       "(rate_distortion.csv: as the containers store them)"},
+       "paper Eq. 16 over the stored functions (masked, non-zero, not of a dark pixel at or "
+       "below the field's noise floor), float values (rate_distortion.csv: as the containers "
+       "store them, dark pixels included)"},
       {"configurations", configurations},
       {"error_difference",
        {{"entries", arguments.compare_entries},
