@@ -82,13 +82,9 @@ std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
         run.method = "l1-refit";
         run.budget = entries;
         run.model = runs[l1].model;
-        TrimmedRefitOptions refit;
-        refit.entries = entries;
-        refit.rounds = grid.refit_rounds;
-        refit.candidates = clustering.candidates;
-        refit.threads = clustering.threads;
-        refit.quiet = clustering.quiet;
-        refit_trimmed_least_squares(rows, run.model, refit, run.refit);
+        refit_trimmed_least_squares(rows, run.model,
+                                    trimmed_refit_options(clustering, entries, grid.refit_rounds),
+                                    run.refit);
         run.refit_seconds = seconds_since(start);
         run.seconds = runs[l1].seconds + run.refit_seconds;
         run.iterations = runs[l1].iterations;

@@ -54,12 +54,8 @@ void validate_options(const ReflectanceField& field, const CompressionOptions& o
 void refit_for_budget(const WorkingRows& rows, const CompressionOptions& options,
                       CompressionStats& stats, ClusterModel& model) {
   const ClusteringOptions& clustering = options.clustering;
-  TrimmedRefitOptions refit;
-  refit.entries = stats.residual_entries;
-  refit.rounds = options.trimmed_refit_rounds;
-  refit.candidates = clustering.candidates;
-  refit.threads = clustering.threads;
-  refit.quiet = clustering.quiet;
+  const TrimmedRefitOptions refit =
+      trimmed_refit_options(clustering, stats.residual_entries, options.trimmed_refit_rounds);
   TrimmedRefitTrace& trace = stats.trimmed_refit.emplace();
   if (options.refit_chooses_clusters) {
     ClusteringTrace other_trace;
@@ -75,6 +71,17 @@ void refit_for_budget(const WorkingRows& rows, const CompressionOptions& options
 }
 
 }  // namespace
+
+TrimmedRefitOptions trimmed_refit_options(const ClusteringOptions& clustering, int entries,
+                                          int rounds) {
+  TrimmedRefitOptions refit;
+  refit.entries = entries;
+  refit.rounds = rounds;
+  refit.candidates = clustering.candidates;
+  refit.threads = clustering.threads;
+  refit.quiet = clustering.quiet;
+  return refit;
+}
 
 CompressionMethod parse_compression_method(const std::string& text) {
   if (text == "l1") return CompressionMethod::l1;

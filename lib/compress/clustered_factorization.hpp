@@ -51,6 +51,11 @@ struct CompressionOptions {
   int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering
 };
 
+// The trimmed refit's settings for `entries` residual entries and `rounds` rounds, with the
+// candidates, threads and quiet of `clustering` (compress and eval refit alike).
+TrimmedRefitOptions trimmed_refit_options(const ClusteringOptions& clustering, int entries,
+                                          int rounds);
+
 // A clustering to continue from (a checkpoint): the model and the iterations already done.
 struct ClusteringResume {
   ClusterModel model;
