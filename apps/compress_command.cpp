@@ -284,8 +284,9 @@ const CommandRegistration registration{
                           "container (--pca-center, --pca-iterations)");
       command->add_option("--pca-center", arguments->pca_centering,
                           "cpca: none (default: --terms components per cluster, the stronger "
-                          "at equal bytes) or mean (a mean plus --terms - 1 components, as "
-                          "Sloan et al.)");
+                          "at equal bytes) or mean (a mean plus --terms - 1 components, stored "
+                          "as their span: Sloan et al.'s mean + t components is --pca-center "
+                          "mean --terms t+1)");
       command
           ->add_option("--pca-iterations", options.pca.iterations,
                        "cpca: cap on fit + reassignment rounds (they stop once settled)")

@@ -211,7 +211,8 @@ void run_eval(EvalArguments& arguments) {
   const FunctionClasses classes =
       classify_functions(field, prepared.functions, arguments.diffuse_threshold, arguments.threads);
   note(
-      "eval: %zu stored functions, %zu mostly diffuse (a + b.l leaves <= %g of the energy), "
+      "eval: %zu stored functions, %zu mostly diffuse (max(0, a + b.l) leaves <= %g of the "
+      "energy), "
       "%zu mostly specular or shadowed",
       prepared.functions.size(), classes.diffuse_count, classes.threshold,
       prepared.functions.size() - classes.diffuse_count);
@@ -507,8 +508,9 @@ void run_eval(EvalArguments& arguments) {
         {"assignment", opencl ? opencl->device_label() : "cpu"}}},
       {"classes",
        {{"rule",
-         "diffuse when the least-squares fit a + b.l over the light directions leaves at "
-         "most `threshold` of the function's energy"},
+         "diffuse when max(0, a + b.l) over the light directions l, a and b fitted in least "
+         "squares over the lights above 5% of the function's largest value, leaves at most "
+         "`threshold` of the function's energy"},
         {"threshold", classes.threshold},
         {"diffuse", classes.diffuse_count},
         {"specular_or_shadowed", prepared.functions.size() - classes.diffuse_count}}},
@@ -623,8 +625,9 @@ const CommandRegistration registration{
           ->capture_default_str();
       command
           ->add_option("--diffuse-threshold", arguments->diffuse_threshold,
-                       "A function is mostly diffuse when the fit a + b.l over the light "
-                       "directions leaves at most this fraction of its energy")
+                       "A function is mostly diffuse when the clamped linear fit "
+                       "max(0, a + b.l) over the light directions (a Lambertian function with "
+                       "its attached shadow) leaves at most this fraction of its energy")
           ->capture_default_str();
       command
           ->add_option("--pca-iterations", arguments->pca_iterations,

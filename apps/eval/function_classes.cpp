@@ -1,7 +1,7 @@
 // Implementation of the diffuse / specular classification (see function_classes.hpp).
 #include "eval/function_classes.hpp"
 
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <relume/error.hpp>
 
@@ -22,20 +22,29 @@ FunctionClasses classify_functions(const ReflectanceField& field,
   Eigen::MatrixXd design(lights, 4);
   for (int i = 0; i < lights; ++i)
     design.row(i) << 1.0, field.directions(i, 0), field.directions(i, 1), field.directions(i, 2);
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(design);
-  const Eigen::MatrixXf q =
-      (qr.householderQ() * Eigen::MatrixXd::Identity(lights, 4)).cast<float>();  // lights x 4
 
   FunctionClasses classes;
   classes.threshold = threshold;
-  classes.linear_residual.resize(stored_function.size());
   classes.diffuse.resize(stored_function.size());
   parallel_for(stored_function.size(), threads, [&](std::size_t r, unsigned) {
-    const auto x = field.values.row(stored_function[r]);
-    const double energy = x.cast<double>().squaredNorm();
-    const double explained = (x * q).cast<double>().squaredNorm();
-    const double left = energy > 0 ? std::max(0.0, 1.0 - explained / energy) : 1.0;
-    classes.linear_residual[r] = static_cast<float>(left);
+    const Eigen::VectorXd x = field.values.row(stored_function[r]).transpose().cast<double>();
+    const double energy = x.squaredNorm(), lit_above = lit_fraction * x.maxCoeff();
+    Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d right = Eigen::Vector4d::Zero();
+    int lit = 0;
+    for (int i = 0; i < lights; ++i) {
+      if (!(x[i] > lit_above)) continue;
+      const Eigen::Vector4d d = design.row(i).transpose();
+      normal += d * d.transpose();
+      right += x[i] * d;
+      ++lit;
+    }
+    double left = 1.0;
+    if (lit >= 5 && energy > 0) {
+      const Eigen::Vector4d fit = normal.ldlt().solve(right);
+      const Eigen::VectorXd clamped = (design * fit).cwiseMax(0.0);
+      left = std::min(1.0, (x - clamped).squaredNorm() / energy);
+    }
     classes.diffuse[r] = left <= threshold;
   });
   classes.diffuse_count =

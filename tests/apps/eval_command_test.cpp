@@ -175,6 +175,10 @@ TEST_F(EvalCommand, WritesEveryTableAndPlot) {
   EXPECT_EQ(summary["classes"]["diffuse"].get<int>() +
                 summary["classes"]["specular_or_shadowed"].get<int>(),
             summary["field"]["stored_functions"].get<int>());
+  // The full sphere of lights has both: the clamped fit follows the spheres' diffuse parts and
+  // their attached shadows, not the highlights and the ground's cast shadows.
+  EXPECT_GT(summary["classes"]["diffuse"].get<int>(), 100);
+  EXPECT_GT(summary["classes"]["specular_or_shadowed"].get<int>(), 100);
   EXPECT_EQ(summary["configurations"].size(), 4u);
   EXPECT_TRUE(summary["configurations"][3]["error_at_0_entries"].contains("l1-refit"));
 
