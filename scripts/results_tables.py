@@ -6,7 +6,8 @@ from scripts/eval_all.sh, OUT_DIR/NAME/refit/*.json, compress reports at 0 entri
 Prints, per field: Eq. 16 by residual entries for every configuration and method, the CPCA / L1
 ratio at the primary configuration (all functions and both classes), the refit at 0 entries as
 the containers store it, relighting speed and error per residual cap, rate against distortion,
-the residual's sparseness at a few thresholds and the compression times.
+the residual's sparseness at a few thresholds and the compression times; then one row of
+headline findings per field.
 """
 import csv
 import json
@@ -19,6 +20,11 @@ METHODS = ("l1", "l1-refit", "cpca", "cpca-mean")
 def read_csv(folder, name):
     with open(os.path.join(folder, name), newline="") as stream:
         return list(csv.DictReader(stream))
+
+
+def number(text, digits):
+    """A CSV cell with `digits` decimals; an empty cell (an empty class) as "n/a"."""
+    return f"{float(text):.{digits}f}" if text not in ("", "nan") else "n/a"
 
 
 def table(header, rows):
@@ -54,9 +60,8 @@ def ratio_table(folder, summary):
           f" classes: {summary['classes']['diffuse']} mostly diffuse,"
           f" {summary['classes']['specular_or_shadowed']} mostly specular or shadowed functions")
     table(["entries", "method", "all", "diffuse", "specular/shadowed"],
-          [[r["entries"], r["method"], f"{float(r['ratio_all']):.3f}",
-            f"{float(r['ratio_diffuse']):.3f}", f"{float(r['ratio_specular']):.3f}"]
-           for r in rows])
+          [[r["entries"], r["method"], number(r["ratio_all"], 3),
+            number(r["ratio_diffuse"], 3), number(r["ratio_specular"], 3)] for r in rows])
     difference = summary["error_difference"]
     print(f"\nPer-pixel map at {difference['entries']} entries: relume's error is lower at"
           f" {100 * difference['fraction_where_relume_is_better']:.1f}% of"
@@ -122,6 +127,43 @@ def time_table(folder):
             f"{float(r['seconds']):.1f}", r["iterations"]] for r in rows])
 
 
+def findings(out, names):
+    """One row per field at its primary configuration: the headline of docs/results.md."""
+    print("\n### Findings at each field's primary configuration")
+    rows = []
+    for name in names:
+        folder = os.path.join(out, name)
+        with open(os.path.join(folder, "eval.json")) as stream:
+            summary = json.load(stream)
+        clusters, terms = (int(v) for v in summary["settings"]["primary"].split("x"))
+        ratios = {(r["method"], int(r["entries"])): float(r["ratio_all"])
+                  for r in read_csv(folder, "error_ratio.csv")
+                  if int(r["clusters"]) == clusters and int(r["terms"]) == terms}
+        wins = sorted(e for (m, e), ratio in ratios.items() if m == "l1" and ratio > 1)
+        refit = [f"{ratios[('l1-refit', e)]:.3f}" if ("l1-refit", e) in ratios else "n/a"
+                 for e in (0, 1)]
+        choice = "n/a"
+        reports = {}
+        for label in ("cpca", "l1-refit-choose"):
+            path = os.path.join(folder, "refit", label + ".json")
+            if os.path.exists(path):
+                with open(path) as stream:
+                    reports[label] = json.load(stream)["error_masked"]
+        if len(reports) == 2:
+            choice = f"{100 * (reports['l1-refit-choose'] / reports['cpca'] - 1):+.2f}%"
+        relit = {}
+        for r in read_csv(folder, "relighting.csv"):
+            relit.setdefault(int(r["cap"]), {})[r["method"]] = float(r["relit_error"])
+        better = [str(cap) for cap, at in sorted(relit.items()) if at["l1"] < at["cpca"]]
+        rows.append([name, f"{clusters} x {terms}", f"{100 * (1 - ratios[('l1', 0)]):.1f}%",
+                     str(wins[0]) if wins else "none", " / ".join(refit), choice,
+                     ", ".join(better) or "none"])
+    table(["field", "configuration", "CPCA lower at 0 entries by",
+           "first entries where relume L1 is lower", "l1-refit ratio at 0 / 1 entries",
+           "l1-refit-choose vs CPCA at 0 entries, as stored",
+           "caps where relume's relit image is closer"], rows)
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit("usage: results_tables.py OUT_DIR NAME...")
@@ -140,6 +182,7 @@ def main():
         rate_table(folder, summary)
         sparseness_table(folder, summary)
         time_table(folder)
+    findings(out, sys.argv[2:])
 
 
 if __name__ == "__main__":
