@@ -5,7 +5,8 @@
 #
 # Usage: scripts/eval_all.sh [BUILD_DIR] [OUT_DIR] [NAMES...]
 #   BUILD_DIR defaults to build, OUT_DIR to out/eval, NAMES to all of ball bear pot1 harvest synth.
-#   RELUME_DATA overrides ../shared/data; EVAL_THREADS (default 2) the worker threads.
+#   RELUME_DATA overrides ../shared/data; EVAL_THREADS (default 2) the worker threads;
+#   EVAL_PARTS (default "eval refit") which of the two kinds of runs to make.
 # Then, per field, `relume compress` at 64 clusters x 4 terms without residual for the L1 method,
 # clustered PCA and the L1 method refitted (alone, and choosing per cluster between both
 # clusterings): the "beat the baseline at 0 entries" measurement, as the containers store it.
@@ -18,6 +19,7 @@ names=("$@")
 [ ${#names[@]} -gt 0 ] || names=(ball bear pot1 harvest synth)
 data="${RELUME_DATA:-$root/../shared/data}"
 threads="${EVAL_THREADS:-2}"
+parts="${EVAL_PARTS:-eval refit}"
 relume="$build/apps/relume"
 grace="$data/envmaps/grace_cross.hdr"
 mkdir -p "$out"
@@ -30,11 +32,9 @@ run_eval() {  # name input extra-options...
 }
 
 for name in "${names[@]}"; do
+  [[ " $parts " == *" eval "* ]] || break
   case "$name" in
-    # The largest field (612x512 at 16 bits): the issue's configuration alone, so that it takes
-    # about as long as the others.
-    ball) run_eval ball "$data/olat/diligent-ball-16bit" --rotate 180 --exposure 1 \
-      --clusters 64 --terms 4 --refit-entries 0,1,3 ;;
+    ball) run_eval ball "$data/olat/diligent-ball-16bit" --rotate 180 --exposure 1 ;;
     bear) run_eval bear "$data/olat/diligent-bear-crop8" --rotate 180 --exposure 3 ;;
     pot1) run_eval pot1 "$data/olat/diligent-pot1-crop8" --rotate 180 --exposure 3 ;;
     harvest) run_eval harvest "$data/olat/diligent-harvest-crop8" --rotate 180 --exposure 3 ;;
@@ -60,6 +60,7 @@ refit_table() {  # name input
 }
 
 for name in "${names[@]}"; do
+  [[ " $parts " == *" refit "* ]] || break
   case "$name" in
     ball) refit_table ball "$data/olat/diligent-ball-16bit" ;;
     bear) refit_table bear "$data/olat/diligent-bear-crop8" ;;
@@ -69,34 +70,5 @@ for name in "${names[@]}"; do
   esac
 done
 
-# The headline figures: Eq. 16 at 0 and 5 entries for every configuration, and where CPCA wins.
-/usr/bin/python3 - "$out" "${names[@]}" <<'PY'
-import csv, json, os, sys
-out, names = sys.argv[1], sys.argv[2:]
-for name in names:
-    path = os.path.join(out, name, "error_vs_entries.csv")
-    rows = list(csv.DictReader(open(path)))
-    print(f"\n{name}: Eq. 16 (all masked functions) by entries; l1-refit at its own budget")
-    configs = sorted({(int(r["clusters"]), int(r["terms"])) for r in rows})
-    entries = sorted({int(r["entries"]) for r in rows})
-    print("| clusters x terms | method | " + " | ".join(str(e) for e in entries) + " |")
-    print("|---|---|" + "---|" * len(entries))
-    for clusters, terms in configs:
-        for method in ("l1", "l1-refit", "cpca", "cpca-mean"):
-            at = {int(r["entries"]): float(r["error_all"]) for r in rows
-                  if r["method"] == method and int(r["clusters"]) == clusters
-                  and int(r["terms"]) == terms}
-            if at:
-                cells = [f"{at[e]:.5f}" if e in at else "" for e in entries]
-                print(f"| {clusters} x {terms} | {method} | " + " | ".join(cells) + " |")
-for name in names:
-    folder = os.path.join(out, name, "refit")
-    print(f"\n{name}: 64 x 4, no residual, Eq. 16 as stored (compress report error_masked)")
-    print("| method | Eq. 16 | seconds |")
-    print("|---|---|---|")
-    for label in ("l1", "cpca", "l1-refit", "l1-refit-choose"):
-        path = os.path.join(folder, label + ".json")
-        if os.path.exists(path):
-            report = json.load(open(path))
-            print(f"| {label} | {report['error_masked']:.6f} | {report['seconds']:.1f} |")
-PY
+# The tables of docs/results.md.
+/usr/bin/python3 "$root/scripts/results_tables.py" "$out" "${names[@]}"
