@@ -34,6 +34,18 @@ def table(header, rows):
         print("| " + " | ".join(str(cell) for cell in row) + " |")
 
 
+def primary(summary):
+    """The (clusters, terms) of the eval's primary configuration."""
+    return tuple(int(v) for v in summary["settings"]["primary"].split("x"))
+
+
+def primary_rows(folder, name, summary):
+    """The rows of one CSV at the primary configuration."""
+    clusters, terms = primary(summary)
+    return [r for r in read_csv(folder, name)
+            if int(r["clusters"]) == clusters and int(r["terms"]) == terms]
+
+
 def error_table(folder):
     rows = read_csv(folder, "error_vs_entries.csv")
     entries = sorted({int(r["entries"]) for r in rows if not r["refit_for"]})
@@ -53,9 +65,8 @@ def error_table(folder):
 
 
 def ratio_table(folder, summary):
-    clusters, terms = (int(v) for v in summary["settings"]["primary"].split("x"))
-    rows = [r for r in read_csv(folder, "error_ratio.csv")
-            if int(r["clusters"]) == clusters and int(r["terms"]) == terms]
+    clusters, terms = primary(summary)
+    rows = primary_rows(folder, "error_ratio.csv", summary)
     print(f"\nCPCA error / relume error at {clusters} x {terms} (above 1: relume is better);"
           f" classes: {summary['classes']['diffuse']} mostly diffuse,"
           f" {summary['classes']['specular_or_shadowed']} mostly specular or shadowed functions")
@@ -93,9 +104,8 @@ def relighting_table(folder):
 
 
 def rate_table(folder, summary):
-    clusters, terms = (int(v) for v in summary["settings"]["primary"].split("x"))
-    rows = [r for r in read_csv(folder, "rate_distortion.csv")
-            if int(r["clusters"]) == clusters and int(r["terms"]) == terms]
+    clusters, terms = primary(summary)
+    rows = primary_rows(folder, "rate_distortion.csv", summary)
     print(f"\nRate against distortion at {clusters} x {terms}, as stored")
     table(["method", "entries", "bytes/pixel", "Eq. 16", "PSNR mask (dB)"],
           [[r["method"], r["entries"], f"{float(r['bytes_per_pixel']):.2f}",
@@ -103,9 +113,8 @@ def rate_table(folder, summary):
 
 
 def sparseness_table(folder, summary):
-    clusters, terms = (int(v) for v in summary["settings"]["primary"].split("x"))
-    rows = [r for r in read_csv(folder, "sparseness.csv")
-            if int(r["clusters"]) == clusters and int(r["terms"]) == terms]
+    clusters, terms = primary(summary)
+    rows = primary_rows(folder, "sparseness.csv", summary)
     wanted = (0.001, 0.01, 0.1)
     print(f"\nFraction of the full residual's entries with |e| <= threshold x the function's norm"
           f" ({clusters} x {terms})")
@@ -135,10 +144,9 @@ def findings(out, names):
         folder = os.path.join(out, name)
         with open(os.path.join(folder, "eval.json")) as stream:
             summary = json.load(stream)
-        clusters, terms = (int(v) for v in summary["settings"]["primary"].split("x"))
+        clusters, terms = primary(summary)
         ratios = {(r["method"], int(r["entries"])): float(r["ratio_all"])
-                  for r in read_csv(folder, "error_ratio.csv")
-                  if int(r["clusters"]) == clusters and int(r["terms"]) == terms}
+                  for r in primary_rows(folder, "error_ratio.csv", summary)}
         wins = sorted(e for (m, e), ratio in ratios.items() if m == "l1" and ratio > 1)
         refit = [f"{ratios[('l1-refit', e)]:.3f}" if ("l1-refit", e) in ratios else "n/a"
                  for e in (0, 1)]
