@@ -18,15 +18,20 @@
 #include "compress/compression_report.hpp"
 #include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
+#include "compress/rate_control.hpp"
 #include "compress/storage_precision.hpp"
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "field/mask_file.hpp"
+#include "field_input_options.hpp"
 #include "json_report.hpp"
 #include "model/reconstruct_field.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -49,19 +54,25 @@ struct CompressArguments {
   std::string bases_precision = "quantized";
   double quantization_budget = QuantizationBudget{}.relative_increase;
   double target_error = 0;
+  std::uint64_t target_bytes = 0;
+  double target_bytes_per_pixel = 0;
+  double target_psnr = 0;
   double psnr_white = 1.0;
   std::string psnr_mask;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
+  FieldInputOptions field_input;
   CompressionOptions options;
 };
 
 // The settings that shape the clustering, with the input: a checkpoint is only resumed when its
 // fingerprint is the same.
-std::string fingerprint(const std::string& input, const CompressionOptions& options) {
+std::string fingerprint(const std::string& input, const FieldInputOptions& field_input,
+                        const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;
   return nlohmann::json{
       {"input", fs::absolute(input).lexically_normal().string()},
+      {"field_input", describe_field_input(field_input)},
       {"clusters", clustering.clusters},
       {"terms", clustering.terms},
       {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
@@ -73,6 +84,86 @@ std::string fingerprint(const std::string& input, const CompressionOptions& opti
       .dump();
 }
 
+// One line for users, leading with the error over what is stored (paper Eq. 16 over the
+// functions inside the mask); with a mask, the whole frame's error follows, in which every
+// background function, not stored, counts as entirely lost.
+std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
+  char error[200];
+  const auto outside = report["field"]["outside_mask"].get<std::int64_t>();
+  if (outside == 0)
+    std::snprintf(error, sizeof error, "error %.5f", report["error_masked"].get<double>());
+  else
+    std::snprintf(error, sizeof error,
+                  "error %.5f over the stored object (whole frame %.5f: %lld background "
+                  "functions not stored)",
+                  report["error_masked"].get<double>(), report["error_all"].get<double>(),
+                  static_cast<long long>(outside));
+  char line[1024];
+  std::snprintf(line, sizeof line,
+                "compressed %s -> %s: %llu bytes (%.4f of float32), %s, %d clusters, %.1f s",
+                report["input"].get<std::string>().c_str(),
+                report["output"].get<std::string>().c_str(),
+                static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
+                report["ratio"].get<double>(), error, clusters, report["seconds"].get<double>());
+  return line;
+}
+
+// The stored precisions the options name; throws Error naming a bad name.
+StoragePrecision storage_precision(const CompressArguments& arguments,
+                                   const CompressionOptions& options) {
+  if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
+    throw Error("--bases-precision must be 'quantized' or 'float32', got '" +
+                arguments.bases_precision + "'");
+  StoragePrecision precision;
+  precision.weights = parse_value_precision(arguments.weights_precision);
+  precision.residual = parse_value_precision(arguments.residual_precision);
+  precision.quantize_bases = arguments.bases_precision == "quantized";
+  precision.budget = arguments.quantization_budget;
+  precision.threads = options.clustering.threads;
+  return precision;
+}
+
+bool has_rate_target(const CompressArguments& arguments) {
+  return arguments.target_bytes > 0 || arguments.target_bytes_per_pixel > 0 ||
+         arguments.target_psnr > 0;
+}
+
+RateTarget rate_target(const CompressArguments& arguments, const ReflectanceField& field,
+                       const std::vector<std::uint8_t>& psnr_mask) {
+  RateTarget target;
+  target.bytes = arguments.target_bytes;
+  if (arguments.target_bytes_per_pixel > 0)
+    target.bytes =
+        std::uint64_t(std::floor(arguments.target_bytes_per_pixel * double(field.pixels())));
+  target.psnr = arguments.target_psnr;
+  target.psnr_white = arguments.psnr_white;
+  target.region = psnr_mask;
+  const std::string solver = arguments.solver;
+  target.parameters_json = [solver](const CompressionOptions& options,
+                                    const CompressionStats& stats) {
+    return compression_parameters(options, stats, solver).dump();
+  };
+  return target;
+}
+
+// At most one target, each finite and positive; throws Error naming the option otherwise.
+void check_targets(const CompressArguments& arguments) {
+  const std::pair<const char*, double> targets[] = {
+      {"--target-error", arguments.target_error},
+      {"--target-bytes", double(arguments.target_bytes)},
+      {"--target-bytes-per-pixel", arguments.target_bytes_per_pixel},
+      {"--target-psnr", arguments.target_psnr}};
+  const char* given = nullptr;
+  for (const auto& [option, value] : targets) {
+    if (value < 0 || !std::isfinite(value))
+      throw Error(std::string(option) + " must be a finite number > 0, got " +
+                  std::to_string(value));
+    if (value == 0) continue;
+    if (given) throw Error(std::string(given) + " and " + option + " are two targets: give one");
+    given = option;
+  }
+}
+
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -81,15 +172,14 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressionOptions options = base_options;
   if (opencl) options.clustering.assign = opencl->function();
 
-  FieldLoadOptions load;
-  load.threads = options.clustering.threads;
-  const ReflectanceField field = load_field(input, load);
+  const ReflectanceField field =
+      load_input_field(input, arguments.field_input, options.clustering.threads);
   const double load_seconds = seconds_since(start);
   note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
        field.height, field.channels, field.lights(), load_seconds);
 
   const fs::path checkpoint = output.string() + ".checkpoint";
-  const std::string print = fingerprint(input, options);
+  const std::string print = fingerprint(input, arguments.field_input, options);
   std::optional<ClusteringResume> resume;
   if (arguments.resume && fs::exists(checkpoint)) {
     resume = read_checkpoint(checkpoint, print);
@@ -97,32 +187,37 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
          resume->iterations.size());
   }
   CompressionStats stats;
-  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord&) {
+  const IterationHook hook = [&](const ClusterModel& model, const IterationRecord& record) {
     write_checkpoint(checkpoint, print, model, stats.clustering.iterations);
+    note(
+        "compress: iteration %d: L1 objective %.6g, %zu of %zu functions changed cluster, %d "
+        "clusters, %.2f s",
+        record.iteration, record.objective, record.changed, model.assignment.size(),
+        record.clusters, record.seconds);
   };
 
-  if (arguments.bases_precision != "quantized" && arguments.bases_precision != "float32")
-    throw Error("--bases-precision must be 'quantized' or 'float32', got '" +
-                arguments.bases_precision + "'");
-
   // What the file stores (store_with_precision); `compressed` stays for the report.
-  StoragePrecision precision;
-  precision.weights = parse_value_precision(arguments.weights_precision);
-  precision.residual = parse_value_precision(arguments.residual_precision);
-  precision.quantize_bases = arguments.bases_precision == "quantized";
-  precision.budget = arguments.quantization_budget;
-  precision.threads = options.clustering.threads;
+  const StoragePrecision precision = storage_precision(arguments, options);
   ContainerOptions container = precision.container_options();
   const QuantizationBudget budget = precision.quantization_budget();
+
+  std::vector<std::uint8_t> psnr_mask;
+  if (!arguments.psnr_mask.empty())
+    psnr_mask = read_mask(arguments.psnr_mask, field.width, field.height);
 
   CompressedField compressed, stored;
   std::optional<QuantizationChoice> quantization;
   nlohmann::ordered_json target_choice;
+  const char* target_key = arguments.target_error > 0 ? "target_error" : "rate_target";
   auto quantize_start = Clock::now();
-  if (arguments.target_error > 0) {
+  if (arguments.target_error > 0 || has_rate_target(arguments)) {
+    const QuantizationBudget* asked_budget = precision.quantizes() ? &budget : nullptr;
     TargetSearch search =
-        compress_to_target_error(field, options, arguments.target_error, container,
-                                 precision.quantizes() ? &budget : nullptr, stats);
+        arguments.target_error > 0
+            ? compress_to_target_error(field, options, arguments.target_error, container,
+                                       asked_budget, stats)
+            : compress_to_rate_target(field, options, rate_target(arguments, field, psnr_mask),
+                                      container, asked_budget, stats);
     quantize_start = Clock::now();
     compressed = search.field;  // already quantized
     stored = quantize_for_container(search.field, container);
@@ -157,11 +252,10 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.solver = arguments.solver;
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
   run.psnr_white = arguments.psnr_white;
-  if (!arguments.psnr_mask.empty())
-    run.psnr_mask = load_mask(arguments.psnr_mask, field.width, field.height);
+  run.psnr_mask = psnr_mask;
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
-  if (!target_choice.is_null()) report["target_error"] = target_choice;
+  if (!target_choice.is_null()) report[target_key] = target_choice;
   const bool rounded = quantization || container.weights == ValuePrecision::float16 ||
                        container.residual == ValuePrecision::float16;
   if (rounded) {
@@ -183,12 +277,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
           {"sample_error_unquantized", quantization->error_unquantized},
           {"sample_error_quantized", quantization->error_quantized}};
   }
-  say("compressed %s -> %s: %llu bytes (%.4f of float32), error %.5f (masked %.5f), "
-      "%d clusters, %.1f s",
-      input.c_str(), output.c_str(),
-      static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-      report["ratio"].get<double>(), report["error_all"].get<double>(),
-      report["error_masked"].get<double>(), stats.clusters, run.total_seconds);
+  say("%s", summary_line(report, stats.clusters).c_str());
   for (const auto& [phase, seconds] : report["phases_seconds"].items())
     detail("compress: %-22s %8.2f s", phase.c_str(), seconds.get<double>());
   return report;
@@ -201,6 +290,28 @@ fs::path output_for(const fs::path& folder, const std::string& input) {
   const std::string stem =
       name.extension() == ".lp" ? name.stem().string() : name.filename().string();
   return folder / (stem + ".relume");
+}
+
+// The container of each input, checked before any work: none may exist (without -y), and two
+// inputs of one name (scans/a and other/a) would write the same OUT/a.relume: refused.
+std::vector<fs::path> output_paths(const CompressArguments& arguments) {
+  check_new_output(arguments.report);
+  const bool several = arguments.inputs.size() > 1;
+  if (several && fs::exists(arguments.output) && !fs::is_directory(arguments.output))
+    throw Error("with several inputs -o names a folder, but " + arguments.output + " is a file");
+  std::vector<fs::path> outputs;
+  for (const std::string& input : arguments.inputs) {
+    const fs::path output =
+        several ? output_for(arguments.output, input) : fs::path(arguments.output);
+    for (std::size_t j = 0; j < outputs.size(); ++j)
+      if (outputs[j] == output)
+        throw Error("inputs " + arguments.inputs[j] + " and " + input + " would both write " +
+                    output.string() + ": compress them into different folders");
+    if (!(arguments.resume && fs::exists(output.string() + ".checkpoint")))
+      check_new_output(output);
+    outputs.push_back(output);
+  }
+  return outputs;
 }
 
 void run_compress(CompressArguments& arguments) {
@@ -219,9 +330,19 @@ void run_compress(CompressArguments& arguments) {
     throw Error("--irls-iterations must be >= 0, got " + std::to_string(arguments.irls_iterations));
   options.clustering.weight_fit.iterations = arguments.irls_iterations;
   options.clustering.basis_fit.iterations = arguments.irls_iterations;
-  if (arguments.target_error < 0 || !std::isfinite(arguments.target_error))
-    throw Error("--target-error must be a relative error > 0, got " +
-                std::to_string(arguments.target_error));
+  check_targets(arguments);
+
+  // Options and outputs are checked before any field is loaded: a typo costs no clustering.
+  validate_compression_options(options);
+  storage_precision(arguments, options);
+  if (arguments.inputs.size() > 1) {
+    check_output_folder_location(arguments.output);
+  } else {
+    check_output_file_location(arguments.output);
+    check_output_file_location(arguments.output + ".checkpoint");
+  }
+  if (!arguments.report.empty()) check_output_file_location(arguments.report);
+  const std::vector<fs::path> outputs = output_paths(arguments);
 
   std::unique_ptr<OpenClAssigner> opencl;
   if (arguments.assign != "opencl" && arguments.assign != "cpu")
@@ -239,15 +360,17 @@ void run_compress(CompressArguments& arguments) {
   if (several) fs::create_directories(arguments.output);
   nlohmann::ordered_json reports = nlohmann::ordered_json::array();
   nlohmann::ordered_json failures = nlohmann::ordered_json::array();
-  for (const std::string& input : arguments.inputs) {
-    const fs::path output =
-        several ? output_for(arguments.output, input) : fs::path(arguments.output);
+  for (std::size_t i = 0; i < arguments.inputs.size(); ++i) {
+    const std::string& input = arguments.inputs[i];
+    const fs::path& output = outputs[i];
     if (!several) {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
       continue;
     }
     try {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
+    } catch (const Interrupted&) {
+      throw;  // an interruption stops the whole batch
     } catch (const std::exception& e) {
       std::fprintf(stderr, "relume: compress: %s failed: %s\n", input.c_str(), e.what());
       failures.push_back({{"input", input}, {"error", e.what()}});
@@ -383,17 +506,28 @@ const CommandRegistration registration{
           "--target-error", arguments->target_error,
           "Choose terms, clusters and per-function residual lengths that reach this "
           "relative error (paper Eq. 16, masked functions) with the fewest bytes");
+      command->add_option("--target-bytes", arguments->target_bytes,
+                          "Rate control: choose terms, clusters and the residual entries kept "
+                          "for the lowest error (Eq. 16) in a container of at most N bytes; the "
+                          "report's rate_target lists every point tried");
+      command->add_option("--target-bytes-per-pixel", arguments->target_bytes_per_pixel,
+                          "Rate control as --target-bytes, for B bytes per pixel of the frame "
+                          "(B x width x height bytes), e.g. 0.5");
+      command->add_option("--target-psnr", arguments->target_psnr,
+                          "Rate control: the smallest container whose 8-bit PSNR (dB, inside "
+                          "--psnr-mask or the field's mask; --psnr-white) reaches DB, e.g. 40");
       command
           ->add_option("--psnr-white", arguments->psnr_white,
                        "The field value that is 255 in the report's 8-bit PSNR (1 for fields of "
                        "8-bit or normalised images)")
           ->capture_default_str();
       command->add_option("--psnr-mask", arguments->psnr_mask,
-                          "A mask image (non-zero = inside) for the report's masked PSNR, e.g. the "
-                          "object's mask when the whole frame is compressed (default: the field's "
-                          "mask)");
+                          "A mask image (non-zero = inside) for the report's masked PSNR and the "
+                          "region of --target-psnr, e.g. the object's mask when the whole frame "
+                          "is compressed (default: the field's mask)");
       command->add_flag("--resume", arguments->resume,
                         "Continue from OUT.checkpoint, written after every clustering iteration");
+      add_field_input_options(*command, arguments->field_input);
       command->callback([arguments] { run_compress(*arguments); });
     }};
 

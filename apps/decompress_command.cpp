@@ -8,8 +8,11 @@
 
 #include "command_registry.hpp"
 #include "container/container.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
+#include "core/memory_budget.hpp"
 #include "model/reconstruct_field.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -21,9 +24,17 @@ struct DecompressOptions {
 };
 
 void run_decompress(const DecompressOptions& options) {
+  check_output_folder(options.output);
   const CompressedField compressed = read_container(options.input);
+  check_memory_need(
+      std::uint64_t(compressed.functions()) * std::uint64_t(compressed.lights) * sizeof(float),
+      "decompressing " + options.input + " (the float32 field, " +
+          std::to_string(compressed.functions()) + " functions x " +
+          std::to_string(compressed.lights) + " lights)");
   const ReflectanceField field = reconstruct_field(compressed, options.residual);
-  write_field_folder(options.output, field);
+  // Into a temporary folder renamed at the end: a failure (a full disk) exposes nothing.
+  write_folder_atomically(
+      options.output, [&](const std::filesystem::path& temp) { write_field_folder(temp, field); });
   const std::string residual =
       options.residual == all_residual_entries
           ? "complete"
@@ -42,8 +53,8 @@ const CommandRegistration registration{
       command->add_option("input", options->input, "The .relume container")->required();
       command
           ->add_option("-o,--output", options->output,
-                       "Output folder (created if missing; existing files of the same names are "
-                       "replaced)")
+                       "Output folder (created if missing; a non-empty one is refused unless "
+                       "-y/--overwrite, which replaces files of the same names)")
           ->required();
       command
           ->add_option("--residual", options->residual,

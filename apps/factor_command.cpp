@@ -7,10 +7,12 @@
 #include <relume/error.hpp>
 
 #include "command_registry.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
 #include "field/npy.hpp"
 #include "l1/factorization.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -31,6 +33,10 @@ struct FactorCommandOptions {
 void run_factor(FactorCommandOptions options) {
   options.factorization.l1.method = parse_l1_method(options.solver);
   options.factorization.init = parse_factorization_init(options.init);
+  for (const char* suffix : {"_W.npy", "_F.npy", "_E.npy"}) {
+    check_new_output(options.output_prefix + suffix);
+    check_output_file_location(options.output_prefix + suffix);
+  }
   const NpyMatrix input = read_npy_matrix(options.input);
   const Eigen::MatrixXd& R = input.values;
   // float32 input is already rounded to ~6e-8 of each value: smaller residuals are that rounding.

@@ -1,11 +1,14 @@
 // The light source options shared by relighting commands: exactly one of `--lights FILE` (one
-// `R G B` row per light) or `--env MAP` (with `--layout` and `--rotate`), resolved to a light
-// vector for a given set of light directions.
+// `R G B` row per light), `--env MAP` (with `--layout` and `--rotate`) or `--light-dir x,y,z` (a
+// moved light, with `--light-color` and `--spread`), resolved to a light vector for a given set
+// of light directions.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <relume/field.hpp>
 #include <string>
+
+#include "directional_light_options.hpp"
 
 namespace relume {
 
@@ -13,12 +16,13 @@ struct LightSourceOptions {
   std::string lights_file;
   std::string environment;
   std::string layout = "auto";
-  double rotate_degrees = 0;
+  std::string rotate = "0";  // degrees or "auto"
+  DirectionalLightOptions moved_light;
 };
 
 void add_light_source_options(CLI::App& command, LightSourceOptions& options);
 
-// The light vector for `directions`; prints the environment map's coverage to stderr.
+// The light vector for `directions`; notes the environment map's coverage.
 LightRgb resolve_light_vector(const LightSourceOptions& options, const LightDirections& directions);
 
 }  // namespace relume

@@ -1,15 +1,20 @@
-// `relume lights`: samples an environment map onto a set of light directions (solid-angle
-// integration over each light's Voronoi cell on the sphere) and writes the light vector, one
-// `R G B` row per light, with the share of the map's energy that falls outside the light set.
+// `relume lights`: the light vector of a set of light directions, one `R G B` row per light, for
+// an environment map (solid-angle integration over each light's Voronoi cell on the sphere, with
+// the share of the map's energy that falls outside the light set) or for a light moved to any
+// direction (interpolation weights over the captured lights).
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <relume/error.hpp>
 #include <relume/lighting.hpp>
 
 #include "command_registry.hpp"
 #include "core/console.hpp"
+#include "directional_light_options.hpp"
 #include "field/light_file.hpp"
 #include "lighting/environment_map.hpp"
+#include "output_paths.hpp"
+#include "rotation_option.hpp"
 
 namespace relume {
 namespace {
@@ -18,7 +23,8 @@ struct LightsOptions {
   std::string directions;
   std::string environment;
   std::string layout = "auto";
-  double rotate_degrees = 0;
+  std::string rotate = "0";  // degrees or "auto"
+  DirectionalLightOptions moved_light;
   std::string output;
   unsigned threads = 0;
 };
@@ -38,28 +44,55 @@ std::string negative_value_note(const EnvironmentMap& map) {
   return text;
 }
 
+// Rows on stdout (for pipes) and the summary on stderr, or the rows to the output file and the
+// summary on stdout.
+void write_light_vector(const LightsOptions& options, const LightRgb& rgb,
+                        const std::string& summary, const std::string& header_comment) {
+  if (options.output.empty()) {
+    note("%s", summary.c_str());
+    for (Eigen::Index i = 0; i < rgb.rows(); ++i)
+      std::printf("%.9g %.9g %.9g\n", rgb(i, 0), rgb(i, 1), rgb(i, 2));
+    return;
+  }
+  write_rgb_rows(options.output, rgb, header_comment);
+  say("%s\nwrote %s", summary.c_str(), options.output.c_str());
+}
+
+void run_moved_light(const LightsOptions& options, const LightDirections& directions) {
+  const LightRgb rgb = directional_light_vector(directions, options.moved_light);
+  const Eigen::Vector3d direction(options.moved_light.direction.data());
+  int carrying = 0;
+  for (Eigen::Index i = 0; i < rgb.rows(); ++i) carrying += rgb.row(i).maxCoeff() > 0;
+  char spread[64];
+  std::snprintf(spread, sizeof spread, ", spread %g degrees", options.moved_light.spread_degrees);
+  const std::string what = "light from " + format_direction(direction) + spread;
+  write_light_vector(options, rgb,
+                     what + ": " + std::to_string(carrying) + " of " +
+                         std::to_string(directions.rows()) + " captured lights carry it",
+                     what + ", for " + options.directions);
+}
+
 void run_lights(const LightsOptions& options) {
+  check_new_output(options.output);
   const auto layout = parse_layout_option(options.layout);
   const LightDirections directions = read_light_directions(options.directions);
+  if (!options.moved_light.direction.empty()) {
+    run_moved_light(options, directions);
+    return;
+  }
+  if (options.environment.empty()) throw Error("give --env MAP or --light-dir x,y,z");
   const EnvironmentMap map = load_environment_map(options.environment, layout);
-  const LightVector vector =
-      integrate_light_vector(map, directions, options.rotate_degrees, options.threads);
+  const LightVectorIntegrator integrator(map, directions, options.threads);
+  const ResolvedRotation rotation = resolve_rotation(options.rotate, integrator);
+  const LightVector vector = integrator.integrate(rotation.degrees);
   const std::string summary = "environment map " + map.name + " (" + layout_name(map.layout) +
                               ", " + std::to_string(map.radiance.width) + "x" +
                               std::to_string(map.radiance.height) + "), " +
                               std::to_string(directions.rows()) +
-                              " lights: " + describe_coverage(vector) + negative_value_note(map);
-  if (options.output.empty()) {
-    // Rows on stdout (for pipes), the summary on stderr.
-    note("%s", summary.c_str());
-    for (Eigen::Index i = 0; i < vector.rgb.rows(); ++i)
-      std::printf("%.9g %.9g %.9g\n", vector.rgb(i, 0), vector.rgb(i, 1), vector.rgb(i, 2));
-    return;
-  }
-  write_rgb_rows(options.output, vector.rgb,
-                 "light vector of " + map.name + " for " + options.directions + ", rotated " +
-                     std::to_string(options.rotate_degrees) + " degrees about +y");
-  say("%s\nwrote %s", summary.c_str(), options.output.c_str());
+                              " lights: " + rotation.information + negative_value_note(map);
+  write_light_vector(options, vector.rgb, summary,
+                     "light vector of " + map.name + " for " + options.directions + ", rotated " +
+                         std::to_string(rotation.degrees) + " degrees about +y");
 }
 
 const CommandRegistration registration{
@@ -69,26 +102,30 @@ const CommandRegistration registration{
           "lights",
           "Sample an environment map onto light directions: each light gets the radiance x solid "
           "angle of its Voronoi cell on the sphere; directions farther from every light than the "
-          "light set's median spacing count as outside and are reported, not used");
+          "light set's median spacing count as outside and are reported, not used. Or, with "
+          "--light-dir, the weights of a light moved to any direction (spherical barycentric on "
+          "the triangulated light set).\n"
+          "Example: relume lights --dirs scene --light-dir 1,0,0.3 --light-color 1,0.9,0.8");
       command
           ->add_option("--dirs", options->directions,
                        "Light directions: a plain 'x y z' file, an RTI .lp file or a field folder "
                        "(camera frame: x right, y up, z towards the camera)")
           ->required();
-      command
-          ->add_option("--env", options->environment,
-                       "Environment map, any format OpenImageIO reads (.hdr, .exr, ...)")
-          ->required();
+      auto* env =
+          command->add_option("--env", options->environment,
+                              "Environment map, any format OpenImageIO reads (.hdr, .exr, ...)");
+      auto* direction = add_light_direction_option(*command, options->moved_light);
+      env->excludes(direction);
+      direction->excludes(env);
+      add_light_color_options(*command, options->moved_light);
       command
           ->add_option("--layout", options->layout,
                        "Map layout: auto (2:1 latlong, 1:1 angular, 3:4 vertical cross), latlong, "
                        "angular or cross")
           ->capture_default_str();
-      command
-          ->add_option("--rotate", options->rotate_degrees,
-                       "Rotate the environment about the up axis (+y) by this many degrees, "
-                       "counter-clockwise seen from above (+90 brings light from +x to -z)")
-          ->capture_default_str();
+      add_rotation_option(*command, options->rotate,
+                          "Rotate the environment about the up axis (+y) by this many degrees, "
+                          "counter-clockwise seen from above (+90 brings light from +x to -z)");
       command->add_option(
           "-o,--output", options->output,
           "Write the rows here (atomically) and the summary to stdout; default: rows "

@@ -4,10 +4,14 @@
 //   0  success
 //   1  an error in the input or the work (a relume::Error, a failed allocation, ...)
 //   2  a usage error (unknown command or option, bad option value)
+//   130 / 143  interrupted by SIGINT / SIGTERM (core/signals.hpp): nothing half-written is left
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
 #include <relume/error.hpp>
 #include <relume/version.hpp>
 #include <string>
@@ -17,6 +21,10 @@
 #include "command_suggestion.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
+#include "core/memory_budget.hpp"
+#include "core/parallel.hpp"
+#include "core/signals.hpp"
+#include "output_paths.hpp"
 
 namespace {
 
@@ -28,10 +36,19 @@ std::vector<std::string> command_names(const CLI::App& app) {
   return names;
 }
 
-// The first argument that is not an option: the command's name, or "" when there is none.
+// The global option that takes a value (its value is not the command's name).
+constexpr const char* memory_limit_option = "--memory-limit";
+
+// The first argument that is not an option or a global option's value: the command's name, or ""
+// when there is none.
 std::string first_word(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == memory_limit_option) {
+      ++i;
+      continue;
+    }
     if (argv[i][0] != '-') return argv[i];
+  }
   return "";
 }
 
@@ -55,6 +72,40 @@ int print_help(CLI::App& app, int argc, char** argv) {
                  relume::unknown_command_message(name, command_names(app)).c_str());
     return exit_usage;
   }
+}
+
+// Every --threads option has the same bound (core/parallel.hpp), checked while parsing.
+void bound_thread_options(CLI::App& app) {
+  for (CLI::App* command : app.get_subcommands({}))
+    if (CLI::Option* threads = command->get_option_no_throw("--threads"))
+      threads->check(CLI::Range(0u, relume::max_worker_threads));
+}
+
+// The message of an exception that is not a relume::Error: the standard library's own errors,
+// with the file or the need named where the exception knows it.
+std::string failure_message(const std::exception& e) {
+  if (const auto* fs_error = dynamic_cast<const std::filesystem::filesystem_error*>(&e)) {
+    std::string message = fs_error->code().message();
+    for (const auto* path : {&fs_error->path1(), &fs_error->path2()})
+      if (!path->empty()) message += ": " + path->string();
+    return "error: " + message;
+  }
+  if (dynamic_cast<const std::bad_alloc*>(&e)) {
+    const relume::MemoryBudget budget = relume::memory_budget();
+    return "error: out of memory (" + relume::byte_size_text(budget.bytes) + " available now, " +
+           budget.source +
+           "): the input is too large for this machine, or --memory-limit is set "
+           "too high";
+  }
+  return std::string("internal error: ") + e.what();
+}
+
+// 128 + the signal that interrupted the run (130 for SIGINT, 143 for SIGTERM).
+int interrupted_exit() {
+  const int signal_number = relume::interrupting_signal();
+  std::fprintf(stderr, "relume: interrupted (%s); no output was half-written\n",
+               signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
+  return 128 + (signal_number ? signal_number : SIGINT);
 }
 
 }  // namespace
@@ -85,7 +136,23 @@ int main(int argc, char** argv) {
          },
          "Also print settings as resolved and timings")
       ->excludes(quiet);
+  app.add_flag_callback(
+      "-y,--overwrite", [] { relume::allow_overwrite(); },
+      "Replace existing output files and write into non-empty output folders "
+      "(without it, a command refuses them before it starts work)");
+  app.add_option_function<std::string>(
+      memory_limit_option,
+      [](const std::string& size) {
+        try {
+          relume::set_memory_limit(relume::parse_byte_size(size));
+        } catch (const relume::Error& e) {
+          throw CLI::ValidationError("--memory-limit", e.what());
+        }
+      },
+      "Refuse work estimated to need more memory than this (for example 8G or 512M; default: "
+      "the memory available, within the cgroup and ulimit limits)");
   for (const auto& setup : relume::registered_commands()) setup(app);
+  bound_thread_options(app);
 
   const std::string word = first_word(argc, argv);
   if (word == "help") return print_help(app, argc, argv);
@@ -101,6 +168,7 @@ int main(int argc, char** argv) {
 
   const auto start = relume::Clock::now();
   try {
+    relume::install_interruption_handlers();
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --help-all, --version
@@ -109,13 +177,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "Run `relume help%s%s` for the options.\n", word.empty() ? "" : " ",
                  word.c_str());
     return exit_usage;
+  } catch (const relume::Interrupted&) {
+    return interrupted_exit();
   } catch (const relume::Error& e) {
+    if (relume::interrupting_signal()) return interrupted_exit();
     std::fprintf(stderr, "relume: error: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "relume: internal error: %s\n", e.what());
+    if (relume::interrupting_signal()) return interrupted_exit();
+    std::fprintf(stderr, "relume: %s\n", failure_message(e).c_str());
     return 1;
   }
+  if (relume::interrupting_signal()) return interrupted_exit();
   relume::detail("relume: %s done in %.2f s", word.c_str(), relume::seconds_since(start));
   return 0;
 }

@@ -15,6 +15,15 @@ struct RendererOptions {
 
 void add_renderer_options(CLI::App& command, RendererOptions& options);
 
+// Checks what can be checked before loading anything: a malformed --residual value, and that
+// --device names an OpenCL device (unless --cpu). Throws Error (listing the devices when nothing
+// matches).
+void check_renderer_options(const RendererOptions& options);
+
+// Refuses (Error with the numbers, core/memory_budget.hpp) a relighting whose field in the
+// relighter's memory and `images` output images would not fit the memory budget.
+void check_relight_memory(const CompressedField& field, std::size_t images);
+
 // The residual cap of `options.residual` for a field of `lights` lights (full_residual for "all").
 // Throws Error naming a malformed value.
 int residual_cap(const RendererOptions& options, int lights);

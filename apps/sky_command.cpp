@@ -3,6 +3,7 @@
 #include <relume/lighting.hpp>
 
 #include "command_registry.hpp"
+#include "output_paths.hpp"
 
 namespace relume {
 namespace {
@@ -27,7 +28,10 @@ const CommandRegistration registration{
           ->capture_default_str();
       command->add_option("--sun-radiance", options->sun_radiance, "Radiance inside the sun's disc")
           ->capture_default_str();
-      command->callback([options, output] { write_image(*output, render_sky(*options)); });
+      command->callback([options, output] {
+        check_new_output(*output);
+        write_image(*output, render_sky(*options));
+      });
     }};
 
 }  // namespace

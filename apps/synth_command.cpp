@@ -10,8 +10,10 @@
 #include <string>
 
 #include "command_registry.hpp"
+#include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
+#include "output_paths.hpp"
 #include "synth/synthetic_scene.hpp"
 
 namespace relume {
@@ -44,6 +46,7 @@ void run_synth(const SynthArguments& arguments) {
   if (!arguments.size.empty()) parse_size(arguments.size, options);
   if (arguments.hemisphere) options.layout = LightLayout::hemisphere;
   validate_synth_options(options);
+  check_output_folder(arguments.output);
 
   ProgressReporter progress("synth: rendering", std::uint64_t(options.height));
   const ReflectanceField field = render_synthetic_field(options, &progress);
@@ -52,7 +55,10 @@ void run_synth(const SynthArguments& arguments) {
 
   note("synth: writing %d EXR images to %s", options.lights, arguments.output.c_str());
   const auto write_start = std::chrono::steady_clock::now();
-  write_field_folder(arguments.output, field);
+  // Into a temporary folder renamed at the end: a failure (a full disk) exposes nothing.
+  write_folder_atomically(arguments.output, [&](const std::filesystem::path& temp) {
+    write_field_folder(temp, field);
+  });
   const double write_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
 

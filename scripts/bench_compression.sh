@@ -34,7 +34,7 @@ PY
 run() {
   local name="$1"; shift
   echo "== $name: relume compress $* (load average $(cut -d' ' -f1 /proc/loadavg))"
-  RELUME_QUIET=1 "$relume" compress "$@" --threads 2 -o "$out/$name.relume" --report "$out/$name.json"
+  RELUME_QUIET=1 "$relume" -y compress "$@" --threads 2 -o "$out/$name.relume" --report "$out/$name.json"
   summary "$out/$name.json"
 }
 
@@ -51,7 +51,7 @@ run ball-lp-dual "$ball" --clusters 64 --terms 4 --residual 5% --solver lp-dual
 run ball-target "$ball" --target-error 0.0005
 
 echo "== independent check of the harvest run's error (scripts/check_error.py)"
-"$relume" decompress "$out/harvest.relume" -o "$out/harvest-decompressed" > /dev/null
+"$relume" -y decompress "$out/harvest.relume" -o "$out/harvest-decompressed" > /dev/null
 /usr/bin/python3 "$root/scripts/check_error.py" "$harvest" "$out/harvest-decompressed"
 
 if [[ "${SKIP_SYNTH:-0}" != 1 ]]; then

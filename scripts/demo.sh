@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 scripts/build.sh
 
-relume=build/apps/relume
+relume="build/apps/relume -y"  # -y: a rerun replaces the previous outputs
 out=out/demo
 mkdir -p "$out"
 $relume synth -o "$out/scene" --size 320x320 --lights 253

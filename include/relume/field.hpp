@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <relume/image.hpp>
 #include <string>
 #include <vector>
@@ -37,7 +38,8 @@ struct ReflectanceField {
   LightRgb intensities;                  // per-light RGB the images were divided by (ones if none)
   std::vector<std::string> image_names;  // one per light, for messages and write-back
   // The quantization step of the images in field units: 1 / (2^bits - 1) for integer images
-  // (1/255 for 8 bits, 1/65535 for 16), divided by the mean light intensity; 0 for float images.
+  // (1/255 for 8 bits, 1/65535 for 16; 1/(255 * 12.92) for sRGB-decoded 8 bits, the step at
+  // black), divided by the mean light intensity; 0 for float images.
   // Values below it are noise no compression needs to keep (compress's default noise floor).
   float noise_floor = 0;
 
@@ -50,17 +52,22 @@ struct ReflectanceField {
 };
 
 struct FieldLoadOptions {
-  ImageReadOptions image;
+  // 8-bit images: automatic decides once per field (float and 16-bit images and DiLiGenT
+  // folders linear, other 8-bit images sRGB unless they declare linear), or as asked.
+  ImageReadOptions image{EightBitEncoding::automatic};
   unsigned threads = 0;  // 0 = all cores
+  // The object mask: the folder's mask.png, or this image instead (for any input, .lp captures
+  // too; non-zero = inside). With use_mask false every pixel is inside and nothing is read.
+  std::filesystem::path mask_file;
+  bool use_mask = true;
+  // Called once per light image as it is read, from the loading threads (so it must be
+  // thread-safe): progress reporting. Empty: nothing is called.
+  std::function<void()> image_loaded;
 };
 
 // `path` is a field folder or an .lp file. Throws Error naming the file, line or pixel at fault.
 ReflectanceField load_field(const std::filesystem::path& path,
                             const FieldLoadOptions& options = {});
-
-// A mask image (any format; non-zero in any channel = inside) as width x height bytes of 0 / 1.
-// Throws Error naming the file when it cannot be read or has another size.
-std::vector<std::uint8_t> load_mask(const std::filesystem::path& path, int width, int height);
 
 // Writes a field folder that load_field reads back: one EXR per light (001.exr ...),
 // filenames.txt, light_directions.txt, light_intensities.txt (the field's intensities; its values

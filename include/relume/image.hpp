@@ -3,9 +3,11 @@
 // An Image holds interleaved channels, rows top to bottom: the common currency of loaders,
 // environment maps, renderers and writers. Reading and writing go through OpenImageIO: integer
 // formats are read at their full depth (16-bit PNG as 16 bits) and normalised to [0, 1]; 8-bit
-// inputs are linear unless the caller asks for sRGB decoding. Float outputs (EXR, HDR, TIFF) are
-// written linear; 8-bit outputs (PNG, JPEG) are exposed by 2^exposure and sRGB-encoded. Every
-// written file carries relume's version as its Software attribute. All writes are atomic.
+// inputs are linear unless the caller asks for sRGB decoding, or for the automatic choice (sRGB
+// unless the file declares a linear colour space). Float outputs (EXR, HDR, TIFF, PFM) are
+// written linear (EXR as float or half); integer outputs (PNG and TIFF at 8 or 16 bits, JPEG at
+// 8) are exposed by 2^exposure, clamped to [0, 1] and sRGB-encoded. Every written file carries
+// relume's version as its Software attribute. All writes are atomic.
 #pragma once
 
 #include <cstddef>
@@ -31,7 +33,9 @@ struct Image {
   float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }
 };
 
-enum class EightBitEncoding { linear, srgb };
+// How 8-bit values are decoded. automatic: by read_image, sRGB unless the file declares a linear
+// colour space; by load_field, once per field (field/input_encoding.hpp's rule).
+enum class EightBitEncoding { linear, srgb, automatic };
 
 struct ImageReadOptions {
   EightBitEncoding eight_bit = EightBitEncoding::linear;
@@ -41,14 +45,24 @@ struct ImageReadOptions {
 Image read_image(const std::filesystem::path& path, const ImageReadOptions& options = {});
 
 struct ImageWriteOptions {
-  double exposure = 0.0;  // stops; applied to 8-bit outputs only
+  double exposure = 0.0;  // stops; applied to integer outputs only
+  // Integer outputs: 8 or 16 bits per channel (JPEG: 8 only). 0: the format's default, 8 for
+  // PNG and JPEG, linear float for TIFF. TIFF with 8 or 16 is an integer output.
+  int bits = 0;
+  bool half = false;  // EXR only: half floats (half the bytes, 11-bit precision) instead of float
 };
 
-// Format from the extension. Throws Error for NaN/Inf pixels (naming the first) or write failure.
+// Throws Error when `options` do not fit the format of `path` (bits other than 0, 8 or 16, 16-bit
+// JPEG, bits for a float-only format, half for anything but EXR). write_image checks the same;
+// commands call this before their work.
+void check_image_write_options(const std::filesystem::path& path, const ImageWriteOptions& options);
+
+// Format from the extension. Throws Error for NaN/Inf pixels (naming the first), options that do
+// not fit the format, or write failure.
 void write_image(const std::filesystem::path& path, const Image& image,
                  const ImageWriteOptions& options = {});
 
-// True for extensions written as linear floats (exr, hdr, tif, tiff, pfm).
+// True for extensions written as linear floats by default (exr, hdr, tif, tiff, pfm).
 bool is_float_image_format(const std::filesystem::path& path);
 
 // sRGB transfer functions on [0, 1].

@@ -16,13 +16,19 @@ namespace relume {
 namespace {
 
 void validate_options(const ReflectanceField& field, const CompressionOptions& options) {
+  validate_compression_options(options);
+  if (options.clustering.terms >= field.lights())
+    throw Error("terms per cluster (" + std::to_string(options.clustering.terms) +
+                ") must be fewer than the lights (" + std::to_string(field.lights()) + ")");
+}
+
+}  // namespace
+
+void validate_compression_options(const CompressionOptions& options) {
   const ClusteringOptions& clustering = options.clustering;
   if (clustering.terms < 1 || clustering.terms > max_cluster_terms)
     throw Error("terms per cluster must be in [1, " + std::to_string(max_cluster_terms) +
                 "], got " + std::to_string(clustering.terms));
-  if (clustering.terms >= field.lights())
-    throw Error("terms per cluster (" + std::to_string(clustering.terms) +
-                ") must be fewer than the lights (" + std::to_string(field.lights()) + ")");
   if (clustering.clusters < 1)
     throw Error("clusters must be >= 1, got " + std::to_string(clustering.clusters));
   if (clustering.candidates < 1)
@@ -40,6 +46,7 @@ void validate_options(const ReflectanceField& field, const CompressionOptions& o
     throw Error("noise floor must be a finite value (negative: the field's), got " +
                 std::to_string(options.noise_floor));
   validate_size_limits(clustering.sizes, clustering.terms);
+  resolve_thread_count(clustering.threads);
   if (options.method == CompressionMethod::cpca &&
       (options.multires_levels > 0 || clustering.exact_refit))
     throw Error(
@@ -48,6 +55,8 @@ void validate_options(const ReflectanceField& field, const CompressionOptions& o
   if (options.refit_chooses_clusters && options.trimmed_refit_rounds < 0)
     throw Error("choosing clusters for the refit needs the trimmed refit (--trimmed-refit N)");
 }
+
+namespace {
 
 // The trimmed least-squares refit for the residual budget, after choosing per cluster between
 // the method's clustering and the other method's when asked.
@@ -215,8 +224,14 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
     for (const auto& record : resume->iterations) done += record.iteration > 0;
     const int cap =
         options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
-    iterate_clusters(prepared.rows, model, clustering, std::max(0, cap - done), stats.clustering,
-                     hook);
+    // A checkpoint written after the iteration that settled is the last one: the uninterrupted
+    // run stopped there, so the resumed one iterates no more (else it would write another model).
+    const bool settled = options.multires_levels == 0 && done > 0 &&
+                         double(resume->iterations.back().changed) <=
+                             clustering.settle_fraction * double(prepared.functions.size());
+    iterate_clusters(prepared.rows, model, clustering, settled ? 0 : std::max(0, cap - done),
+                     stats.clustering, hook);
+    if (settled) stats.clustering.settled = true;
   } else if (options.multires_levels > 0) {
     stats.multires.emplace();
     model = multires_start(field, prepared, options.multires_levels, haar, stats.noise_floor,

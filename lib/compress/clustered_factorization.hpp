@@ -85,6 +85,11 @@ struct CompressionStats {
   std::vector<double> sparseness;
 };
 
+// Throws Error naming the first option out of range (terms, clusters, candidates, iterations,
+// levels, threshold, size limits, threads): what compress_field checks before any work, minus what
+// needs the field (terms below its lights).
+void validate_compression_options(const CompressionOptions& options);
+
 // `hook` runs after every clustering iteration (for checkpoints); `resume` skips the seeding (and
 // the multi-resolution start) and continues its iterations up to the cap.
 CompressedField compress_field(const ReflectanceField& field, const CompressionOptions& options,

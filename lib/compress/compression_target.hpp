@@ -7,6 +7,7 @@
 // container wins.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -32,6 +33,29 @@ TargetSearch compress_to_target_error(const ReflectanceField& field,
                                       const ContainerOptions& container,
                                       const QuantizationBudget* quantization,
                                       CompressionStats& stats);
+
+// One (terms, clusters) pair of the grid the targets search, factored with its full residual.
+struct GridCandidate {
+  CompressionOptions options;  // the pair's terms and clusters, a full residual budget
+  CompressedField full;
+  CompressionStats stats;
+  std::vector<double> energy;  // ||R[p,:]||^2 of each stored row
+};
+
+// Calls `visit` for every pair of terms {2, 4, 8} (below the light count) and clusters
+// {32, 64, 128}, each factored by compress_field with `options` otherwise.
+void for_each_grid_candidate(const ReflectanceField& field, const CompressionOptions& options,
+                             const std::function<void(GridCandidate&)>& visit);
+
+// Each residual entry's error reduction: value^2 times its row's weight (1 / ||R[p,:]||^2 for
+// Eq. 16, 1 inside a PSNR region and 0 outside it). Within a row the gains descend, as the
+// entries are sorted by |value|.
+std::vector<float> residual_gains(const ResidualRows& residual,
+                                  const std::vector<double>& row_weight);
+
+// Keeps, of every row, the prefix of entries whose gain is >= cut; returns the sum of the kept
+// gains.
+double keep_entries_with_gain(ResidualRows& residual, const std::vector<float>& gains, float cut);
 
 // Cuts every row of `field`'s residual to the shortest prefix such that the mean per-function
 // relative error over its stored rows reaches `target_error` (rows sorted by |value|, as stored).

@@ -421,6 +421,7 @@ ClusterModel choose_clusters(const WorkingRows& rows, const ClusterModel& first,
     int removed = -1;
     for (int k = 0; k < both.clusters; ++k)
       if (alive[k] && (removed < 0 || cost[k] < cost[removed])) removed = k;
+    if (removed < 0) break;  // no cluster alive (cannot happen while remaining > 0)
     alive[removed] = 0;
   }
 

@@ -27,6 +27,11 @@ int index_width_bits(IndexWidth width);
 // <= 65536) when `requested` is automatic, else `requested` if it fits; throws Error if not.
 IndexWidth resolve_light_index_width(IndexWidth requested, int lights);
 
+// read_container of a file's bytes already in memory; `path` names it in errors (the fuzz
+// targets decode their inputs this way).
+CompressedField decode_container(const std::string& bytes, const std::filesystem::path& path,
+                                 ContainerOptions* stored_options = nullptr);
+
 // The layout write_container would produce (section sizes as really stored), without writing: it
 // encodes the field in memory and keeps only the layout.
 ContainerLayout plan_container(const CompressedField& field, const ContainerOptions& options = {});

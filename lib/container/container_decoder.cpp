@@ -13,6 +13,7 @@
 #include "container/container_sections.hpp"
 #include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/quantization.hpp"
 
@@ -24,6 +25,18 @@ namespace {
 
 // A header is a small JSON object; its free-form parameters are the only unbounded part.
 constexpr std::uint64_t max_header_bytes = 16u << 20;
+
+// The most pixels a container may claim (a 32768 x 32768 image). Every other count is bounded by
+// the sections that hold its data, hence by the file's size; the mask is not (an all-outside mask
+// of any size takes a few bytes of runs), so its size has this sane maximum.
+constexpr std::uint64_t max_container_pixels = std::uint64_t(1) << 30;
+
+// What decoding holds at most, for the memory check: the mask (a byte per pixel), the map from
+// functions to stored rows of the weight prediction (8 bytes per function) and, per decoded
+// section byte, the decoded bytes themselves and up to four bytes of numbers (a 1-byte light index
+// becomes a 32-bit one).
+constexpr std::uint64_t decoded_bytes_per_section_byte = 5;
+constexpr std::uint64_t decoded_bytes_per_function = 8;
 
 std::string read_container_bytes(const fs::path& path) {
   if (!fs::exists(path)) throw Error("container not found: " + path.string());
@@ -184,6 +197,18 @@ class ContainerDecoder {
     else
       throw Error(at + ": 'transform' is \"" + transform + "\", expected \"identity\" or \"haar\"");
     check_dimensions(field, at);
+    const std::uint64_t pixels = std::uint64_t(field.width) * std::uint64_t(field.height);
+    if (pixels > max_container_pixels)
+      throw Error(at + ": " + std::to_string(field.width) + "x" + std::to_string(field.height) +
+                  " pixels is more than the " + std::to_string(max_container_pixels) +
+                  " a container may hold");
+    std::uint64_t section_bytes = 0;
+    for (const ContainerSection& section : parsed_.layout.sections)
+      section_bytes += section.raw_bytes;
+    check_memory_need(pixels + decoded_bytes_per_function * std::uint64_t(field.functions()) +
+                          decoded_bytes_per_section_byte * section_bytes,
+                      "reading " + file_ + " (" + std::to_string(field.width) + "x" +
+                          std::to_string(field.height) + " pixels)");
 
     DecodedHeader decoded;
     decoded.stored_rows =
@@ -372,10 +397,14 @@ class ContainerDecoder {
 
 }  // namespace
 
-CompressedField read_container(const fs::path& path, ContainerOptions* stored_options) {
-  const std::string bytes = read_container_bytes(path);
+CompressedField decode_container(const std::string& bytes, const fs::path& path,
+                                 ContainerOptions* stored_options) {
   const ParsedContainer parsed = parse_container(bytes, path);
   return ContainerDecoder(bytes, parsed, path).decode(stored_options);
+}
+
+CompressedField read_container(const fs::path& path, ContainerOptions* stored_options) {
+  return decode_container(read_container_bytes(path), path, stored_options);
 }
 
 ContainerLayout describe_container(const fs::path& path) {

@@ -169,10 +169,7 @@ ParsedContainer parse_container(const std::string& bytes, const std::filesystem:
       const SectionCoding coding = SectionCoding::from_word(words[s], where);
       parsed.codings.push_back(coding);
       section.coding = coding.describe();
-      if (!coding.zstd && section.raw_bytes != section.bytes)
-        throw Error(where + " is stored raw in " + std::to_string(section.bytes) +
-                    " bytes, but the section table says it decodes to " +
-                    std::to_string(section.raw_bytes));
+      check_coded_size(section.bytes, section.raw_bytes, coding, where);
     }
     if (section.offset != expected_offset)
       throw Error(where + " starts at byte " + std::to_string(section.offset) + ", expected " +

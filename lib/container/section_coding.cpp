@@ -142,14 +142,27 @@ CodedSection code_section(const std::string& raw, int element_bytes) {
   return best;
 }
 
+void check_coded_size(std::uint64_t coded_bytes, std::uint64_t raw_bytes,
+                      const SectionCoding& coding, const std::string& where) {
+  if (!coding.zstd) {
+    if (coded_bytes != raw_bytes)
+      throw Error(where + " is stored raw in " + std::to_string(coded_bytes) +
+                  " bytes, but the section table says it decodes to " + std::to_string(raw_bytes));
+    return;
+  }
+  // A zstd block of at most 128 KiB takes at least 4 coded bytes (a 3-byte header and one byte
+  // of an RLE block), so no valid frame decodes to more than 32768 times its size.
+  constexpr std::uint64_t max_zstd_ratio = (128u << 10) / 4;
+  if (raw_bytes > coded_bytes * max_zstd_ratio)
+    throw Error(where + ": " + std::to_string(coded_bytes) + " zstd-coded bytes cannot decode to " +
+                std::to_string(raw_bytes) + " bytes as the section table says (at most " +
+                std::to_string(max_zstd_ratio) + " times as many): the section is corrupt");
+}
+
 std::string decode_section(std::string_view coded, const SectionCoding& coding,
                            std::uint64_t raw_bytes, const std::string& where) {
-  if (!coding.zstd) {
-    if (coded.size() != raw_bytes)
-      throw Error(where + ": has " + std::to_string(coded.size()) + " bytes, the table says " +
-                  std::to_string(raw_bytes));
-    return std::string(coded);
-  }
+  check_coded_size(coded.size(), raw_bytes, coding, where);
+  if (!coding.zstd) return std::string(coded);
   const unsigned long long content = ZSTD_getFrameContentSize(coded.data(), coded.size());
   if (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN)
     throw Error(where + ": is not a complete zstd frame (corrupt or truncated)");

@@ -35,6 +35,12 @@ struct CodedSection {
 // (raw.size() must be a multiple of it).
 CodedSection code_section(const std::string& raw, int element_bytes);
 
+// Throws Error("<where>: ...") when `coded_bytes` of a section of `coding` cannot decode to
+// `raw_bytes` (stored raw: they must be equal; zstd: at most 32768 times as many), so that a
+// table's claimed sizes are bounded by the file's real size before anything is allocated.
+void check_coded_size(std::uint64_t coded_bytes, std::uint64_t raw_bytes,
+                      const SectionCoding& coding, const std::string& where);
+
 // The raw bytes of a coded section, which must be exactly `raw_bytes` long (the caller bounds
 // raw_bytes before this allocates it). Throws Error("<where>: ...") for a damaged zstd frame or
 // a size other than raw_bytes.

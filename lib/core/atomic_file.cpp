@@ -1,42 +1,84 @@
-// Implementation of the temp-file + fsync + rename writer.
+// Implementation of the temp-file + fsync + rename writers.
 #include "core/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <relume/error.hpp>
 #include <sstream>
+
+#include "core/interruption.hpp"
+#include "core/temporary_files.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
 
 namespace {
-void fsync_path(const fs::path& path) {
+
+std::string system_reason() { return std::strerror(errno); }
+
+void fsync_path(const fs::path& path, const fs::path& target) {
   const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw Error("cannot open " + path.string() + " to flush it to disk");
+  if (fd < 0) throw Error("cannot open " + path.string() + " to flush " + target.string());
   const int rc = ::fsync(fd);
+  const std::string reason = system_reason();
   ::close(fd);
-  if (rc != 0) throw Error("cannot flush " + path.string() + " to disk");
+  if (rc != 0) throw Error("cannot write " + target.string() + ": " + reason);
 }
+
+fs::path folder_of(const fs::path& target) {
+  return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+void rename_or_throw(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec)
+    throw Error("cannot rename " + from.string() + " to " + to.string() + ": " + ec.message());
+}
+
+bool writable_folder(const fs::path& folder) { return ::access(folder.c_str(), W_OK | X_OK) == 0; }
+
 }  // namespace
 
-void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+void check_output_file_location(const fs::path& target) {
+  const fs::path parent = folder_of(target);
   if (!fs::is_directory(parent))
     throw Error("cannot write " + target.string() + ": folder " + parent.string() +
                 " does not exist");
-  // Keep the extension last: image writers choose the format from it.
-  const fs::path temp =
-      parent / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+  if (fs::is_directory(target)) throw Error("cannot write " + target.string() + ": it is a folder");
+  if (!writable_folder(parent))
+    throw Error("cannot write " + target.string() + ": folder " + parent.string() +
+                " is not writable");
+}
+
+void check_output_folder_location(const fs::path& folder) {
+  if (fs::exists(folder) && !fs::is_directory(folder))
+    throw Error("cannot write the folder " + folder.string() + ": a file of that name exists");
+  fs::path existing = fs::absolute(folder).lexically_normal();
+  while (!fs::exists(existing) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing))
+    throw Error("cannot write the folder " + folder.string() + ": " + existing.string() +
+                " is not a folder");
+  if (!writable_folder(existing))
+    throw Error("cannot write the folder " + folder.string() + ": folder " + existing.string() +
+                " is not writable");
+}
+
+void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+  check_output_file_location(target);
+  remove_stale_temporaries(target);
+  const fs::path temp = temporary_path_for(target);
+  const TemporaryPathRegistration registration(temp, TemporaryPathRegistration::Kind::file);
   try {
     write(temp);
-    fsync_path(temp);
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec)
-      throw Error("cannot rename " + temp.string() + " to " + target.string() + ": " +
-                  ec.message());
+    fsync_path(temp, target);
+    throw_if_interrupted();
+    rename_or_throw(temp, target);
   } catch (...) {
     std::error_code ignored;
     fs::remove(temp, ignored);
@@ -46,11 +88,51 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
 
 void write_file_atomically(const fs::path& target, const std::string& bytes) {
   write_atomically(target, [&](const fs::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) throw Error("cannot write " + target.string());
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw Error("cannot write " + target.string() + ": " + system_reason());
+    for (std::size_t done = 0; done < bytes.size();) {
+      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const std::string reason = n < 0 ? system_reason() : "nothing written";
+        ::close(fd);
+        throw Error("cannot write " + target.string() + ": " + reason);
+      }
+      done += std::size_t(n);
+    }
+    if (::close(fd) != 0) throw Error("cannot write " + target.string() + ": " + system_reason());
   });
+}
+
+void write_folder_atomically(const fs::path& target_path,
+                             const std::function<void(const fs::path&)>& write) {
+  fs::path target = target_path.lexically_normal();
+  if (target.filename().empty()) target = target.parent_path();  // "out/" is the folder "out"
+  check_output_folder_location(target);
+  const fs::path parent = folder_of(target);
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw Error("cannot create the folder " + parent.string() + ": " + ec.message());
+  remove_stale_temporaries(target);
+  const fs::path temp = temporary_path_for(target);
+  const TemporaryPathRegistration registration(temp, TemporaryPathRegistration::Kind::folder);
+  try {
+    fs::create_directory(temp, ec);
+    if (ec) throw Error("cannot create a folder in " + parent.string() + ": " + ec.message());
+    write(temp);
+    throw_if_interrupted();
+    if (!fs::exists(target)) {
+      rename_or_throw(temp, target);
+      return;
+    }
+    for (const fs::directory_entry& entry : fs::directory_iterator(temp))
+      rename_or_throw(entry.path(), target / entry.path().filename());
+    fs::remove(temp);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(temp, ignored);
+    throw;
+  }
 }
 
 std::string read_file(const fs::path& path) {

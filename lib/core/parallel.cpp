@@ -5,12 +5,18 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <relume/error.hpp>
+#include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace relume {
 
 unsigned resolve_thread_count(unsigned requested) {
+  if (requested > max_worker_threads)
+    throw Error("--threads " + std::to_string(requested) + " is more than the " +
+                std::to_string(max_worker_threads) + " worker threads relume runs at most");
   if (requested > 0) return requested;
   return std::max(1u, std::thread::hardware_concurrency());
 }
@@ -38,7 +44,14 @@ void parallel_for(std::size_t count, unsigned threads,
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);
+  pool.reserve(threads - 1);
+  for (unsigned w = 1; w < threads; ++w) {
+    try {
+      pool.emplace_back(work, w);
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had: the ones started (and this one) do the work
+    }
+  }
   work(0);
   for (auto& t : pool) t.join();
   if (first_error) std::rethrow_exception(first_error);

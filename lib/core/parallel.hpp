@@ -1,6 +1,8 @@
 // A dynamic parallel loop over [0, count): worker threads take the next index from an atomic
 // counter, so uneven work (LP solves, image decodes) balances itself. The first exception thrown by
-// any worker stops the loop and is rethrown on the calling thread.
+// any worker stops the loop and is rethrown on the calling thread. Starting threads fails soft:
+// when the system refuses a thread (a memory or process limit), the loop runs on the workers it
+// has, the calling thread at least.
 #pragma once
 
 #include <cstddef>
@@ -8,7 +10,12 @@
 
 namespace relume {
 
-// Number of worker threads to use when the user asked for `requested` (0 = all cores).
+// The most worker threads a user may ask for (`--threads`): far above any machine's cores, far
+// below what exhausts a process's memory for thread stacks.
+inline constexpr unsigned max_worker_threads = 1024;
+
+// Number of worker threads to use when the user asked for `requested` (0 = all cores). Throws
+// Error naming the value when it is above max_worker_threads.
 unsigned resolve_thread_count(unsigned requested);
 
 // Calls body(index, worker) for every index; worker is in [0, threads) and lets a body keep

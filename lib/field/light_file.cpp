@@ -4,10 +4,14 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
+#include <optional>
 #include <relume/error.hpp>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_file.hpp"
+#include "core/text_numbers.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -19,45 +23,30 @@ std::string where(const fs::path& path, int line) {
 }
 
 // Parses one number, accepting a decimal comma ("0,25"). Throws naming the file, line and token.
-double parse_number(std::string token, const fs::path& path, int line, const std::string& what) {
-  for (char& ch : token)
-    if (ch == ',') ch = '.';
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(token, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != token.size())
-    throw Error(where(path, line) + ": " + what + " '" + token + "' is not a number");
-  if (!std::isfinite(value))
-    throw Error(where(path, line) + ": " + what + " '" + token + "' is not finite");
-  return value;
-}
-
-std::vector<std::string> split_fields(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> fields;
-  for (std::string field; in >> field;) fields.push_back(field);
-  return fields;
-}
-
-bool is_blank_or_comment(const std::string& line) {
-  const auto first = line.find_first_not_of(" \t\r");
-  return first == std::string::npos || line[first] == '#';
+double parse_number(std::string_view token, const fs::path& path, int line,
+                    const std::string& what) {
+  const ParsedNumber parsed = parse_number_token(token, /*decimal_comma=*/true);
+  std::string quoted = "'";
+  quoted.append(token).append("'");
+  if (parsed.status == ParsedNumber::Status::not_a_number)
+    throw Error(where(path, line) + ": " + what + " " + quoted + " is not a number");
+  if (parsed.status == ParsedNumber::Status::not_finite)
+    throw Error(where(path, line) + ": " + what + " " + quoted + " is not finite");
+  return parsed.value;
 }
 
 std::ifstream open_text(const fs::path& path) {
   if (!fs::exists(path)) throw Error("light file not found: " + path.string());
+  if (fs::is_directory(path)) throw Error("light file " + path.string() + " is a folder");
   std::ifstream in(path);
   if (!in) throw Error("cannot open light file " + path.string());
   return in;
 }
 
+// The unit vector of (x, y, z); hypot does not overflow for components near 1e308.
 Eigen::RowVector3f unit_direction(const std::vector<double>& xyz, const fs::path& path, int line) {
-  const double length = std::sqrt(xyz[0] * xyz[0] + xyz[1] * xyz[1] + xyz[2] * xyz[2]);
-  if (!(length > 1e-12)) throw Error(where(path, line) + ": light direction has zero length");
+  const double length = std::hypot(xyz[0], xyz[1], xyz[2]);
+  if (!(length > 0)) throw Error(where(path, line) + ": light direction has zero length");
   return Eigen::RowVector3f(float(xyz[0] / length), float(xyz[1] / length), float(xyz[2] / length));
 }
 
@@ -66,25 +55,46 @@ struct Triple {
   int line;
 };
 
+// The lines of a text file with their numbers, blank lines and # comments skipped.
+class TextLines {
+ public:
+  explicit TextLines(const fs::path& path) : path_(path), in_(open_text(path)) {}
+  // The next line that is not blank or a comment; false at the end.
+  bool next(std::string& line) {
+    while (std::getline(in_, line)) {
+      ++number_;
+      if (!is_blank_or_comment(line)) return true;
+    }
+    if (in_.bad()) throw Error("cannot read light file " + path_.string());
+    return false;
+  }
+  int number() const { return number_; }
+
+ private:
+  const fs::path& path_;
+  std::ifstream in_;
+  int number_ = 0;
+};
+
 // Rows of exactly three numbers with their line numbers; `what` names the quantity in messages.
 std::vector<Triple> read_triples(const fs::path& path, const std::string& what) {
-  std::ifstream in = open_text(path);
+  TextLines lines(path);
   std::vector<Triple> rows;
-  int line_number = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_number;
-    if (is_blank_or_comment(line)) continue;
-    const auto fields = split_fields(line);
+  for (std::string line; lines.next(line);) {
+    const auto fields = split_blank_fields(line);
     if (fields.size() != 3)
-      throw Error(where(path, line_number) + ": expected 3 numbers (" + what + "), found " +
+      throw Error(where(path, lines.number()) + ": expected 3 numbers (" + what + "), found " +
                   std::to_string(fields.size()) + " fields");
     std::vector<double> row;
-    for (const auto& f : fields) row.push_back(parse_number(f, path, line_number, what));
-    rows.push_back({row, line_number});
+    for (const auto& f : fields) row.push_back(parse_number(f, path, lines.number(), what));
+    rows.push_back({row, lines.number()});
   }
   if (rows.empty()) throw Error(path.string() + ": no " + what + " rows");
   return rows;
 }
+
+// The most lights a light file may declare: light indices are 32-bit and counts are ints.
+constexpr std::uint64_t max_light_count = std::numeric_limits<int>::max();
 
 }  // namespace
 
@@ -97,46 +107,40 @@ LightDirections read_direction_rows(const fs::path& path) {
 }
 
 LpFile read_lp_file(const fs::path& path) {
-  std::ifstream in = open_text(path);
+  TextLines lines(path);
   std::string line;
-  int line_number = 0;
-  long count = -1;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (is_blank_or_comment(line)) continue;
-    const auto fields = split_fields(line);
-    const double n = parse_number(fields.at(0), path, line_number, "light count");
-    if (fields.size() != 1 || n < 1 || n != std::floor(n))
-      throw Error(where(path, line_number) + ": expected the light count (a positive integer)");
-    count = static_cast<long>(n);
-    break;
-  }
-  if (count < 0) throw Error(path.string() + ": empty .lp file");
+  if (!lines.next(line)) throw Error(path.string() + ": empty .lp file");
+  const auto header = split_blank_fields(line);
+  const std::optional<std::uint64_t> count =
+      header.size() == 1 ? parse_unsigned(header[0]) : std::nullopt;
+  if (!count || *count < 1 || *count > max_light_count)
+    throw Error(where(path, lines.number()) + ": expected the light count (an integer from 1 to " +
+                std::to_string(max_light_count) + "), found '" + std::string(trim_blanks(line)) +
+                "'");
   LpFile lp;
   std::vector<Eigen::RowVector3f> directions;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (is_blank_or_comment(line)) continue;
-    const auto fields = split_fields(line);
+  while (lines.next(line)) {
+    const auto fields = split_blank_fields(line);
     if (fields.size() < 4)
-      throw Error(where(path, line_number) + ": expected 'filename x y z', found " +
+      throw Error(where(path, lines.number()) + ": expected 'filename x y z', found " +
                   std::to_string(fields.size()) + " fields");
     std::vector<double> xyz;
     for (std::size_t k = fields.size() - 3; k < fields.size(); ++k)
-      xyz.push_back(parse_number(fields[k], path, line_number, "light direction"));
+      xyz.push_back(parse_number(fields[k], path, lines.number(), "light direction"));
     // The name is everything before the last three fields, so names may contain spaces.
-    std::string name = line.substr(0, line.find_last_not_of(" \t\r") + 1);
-    for (int k = 0; k < 3; ++k) name = name.substr(0, name.find_last_of(" \t"));
-    name = name.substr(0, name.find_last_not_of(" \t") + 1);
-    name = name.substr(name.find_first_not_of(" \t"));
-    lp.images.emplace_back(name);
-    directions.push_back(unit_direction(xyz, path, line_number));
+    const std::size_t name_end = std::size_t(fields[fields.size() - 3].data() - line.data());
+    lp.images.emplace_back(std::string(trim_blanks(std::string_view(line).substr(0, name_end))));
+    directions.push_back(unit_direction(xyz, path, lines.number()));
+    if (directions.size() > *count)
+      throw Error(where(path, lines.number()) + ": the header says " + std::to_string(*count) +
+                  " lights, but more light lines follow");
   }
-  if (static_cast<long>(directions.size()) != count)
-    throw Error(path.string() + ": header says " + std::to_string(count) + " lights but " +
+  if (directions.size() != *count)
+    throw Error(path.string() + ": header says " + std::to_string(*count) + " lights but " +
                 std::to_string(directions.size()) + " light lines follow");
-  lp.directions.resize(count, 3);
-  for (long i = 0; i < count; ++i) lp.directions.row(i) = directions[i];
+  lp.directions.resize(Eigen::Index(directions.size()), 3);
+  for (std::size_t i = 0; i < directions.size(); ++i)
+    lp.directions.row(Eigen::Index(i)) = directions[i];
   return lp;
 }
 
@@ -160,7 +164,13 @@ LightRgb read_rgb_rows(const fs::path& path, const std::string& what) {
   const auto rows = read_triples(path, what);
   LightRgb rgb(rows.size(), 3);
   for (std::size_t i = 0; i < rows.size(); ++i)
-    for (int c = 0; c < 3; ++c) rgb(i, c) = static_cast<float>(rows[i].values[c]);
+    for (int c = 0; c < 3; ++c) {
+      const double value = rows[i].values[c];
+      if (std::abs(value) > std::numeric_limits<float>::max())
+        throw Error(where(path, rows[i].line) + ": " + what + " " + std::to_string(value) +
+                    " is beyond float32 (at most 3.4e38 in magnitude)");
+      rgb(i, c) = static_cast<float>(value);
+    }
   return rgb;
 }
 

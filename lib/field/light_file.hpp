@@ -4,8 +4,10 @@
 //  - RTI .lp: first line N, then N lines `filename x y z` (decimal commas accepted, file names
 //    may contain spaces: the last three fields are the direction);
 //  - a field folder: its light_directions.txt, or its single .lp file.
-// Directions are normalised; zero-length, non-numeric or non-finite ones are refused with the file
-// and line.
+// One tokenizer reads them all (core/text_numbers.hpp): fields are separated by any run of blanks
+// (space, tab, \v, \f, \r) and numbers are parsed independently of the locale. Directions are
+// normalised (without overflow for huge components); zero-length, non-numeric or non-finite ones,
+// and light counts beyond an int, are refused with the file and line.
 #pragma once
 
 #include <filesystem>
@@ -29,7 +31,8 @@ LightDirections read_direction_rows(const std::filesystem::path& path);
 LightDirections read_light_directions(const std::filesystem::path& path_or_folder);
 
 // Rows of three finite numbers (light intensities, light vectors). `what` names the quantity in
-// errors ("light intensity"). Negative values are allowed; NaN/Inf are refused.
+// errors ("light intensity"). Negative values are allowed; NaN/Inf and values beyond float32 are
+// refused.
 LightRgb read_rgb_rows(const std::filesystem::path& path, const std::string& what);
 
 // Writes rows of three numbers with full float precision, atomically.

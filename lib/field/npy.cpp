@@ -240,21 +240,50 @@ NpyMatrix read_npy_matrix(const std::filesystem::path& path) {
   return parse_npy_matrix(read_file(path), path.string());
 }
 
-std::string encode_npy_matrix(const Eigen::MatrixXd& values, NpyDtype dtype) {
-  const bool single = dtype == NpyDtype::float32;
-  std::string header = std::string("{'descr': '") + (single ? "<f4" : "<f8") +
-                       "', 'fortran_order': False, 'shape': (" + std::to_string(values.rows()) +
-                       ", " + std::to_string(values.cols()) + "), }";
-  // Pad with spaces and end with a newline so that the data starts at a multiple of 64 bytes.
+namespace {
+
+// Magic, version 1.0 and the header dict, padded with spaces and ended with a newline so that
+// the data starts at a multiple of 64 bytes.
+std::string npy_header(const std::string& descr, const std::vector<std::size_t>& shape) {
+  // Python tuples: (), (4,), (2, 3).
+  std::string dimensions;
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    dimensions += (i ? ", " : "") + std::to_string(shape[i]);
+  if (shape.size() == 1) dimensions += ",";
+  std::string header =
+      "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (" + dimensions + "), }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header.append((64 - unpadded % 64) % 64, ' ');
   header += '\n';
+  if (header.size() > 0xffff)
+    throw Error("a .npy header of " + std::to_string(header.size()) +
+                " bytes does not fit version 1.0");
   std::string bytes(kMagic, kMagicSize);
   bytes += '\x01';
   bytes += '\x00';
   bytes += static_cast<char>(header.size() & 0xff);
   bytes += static_cast<char>(header.size() >> 8);
-  bytes += header;
+  return bytes + header;
+}
+
+}  // namespace
+
+std::string encode_npy_array(const std::string& descr, const std::vector<std::size_t>& shape,
+                             const void* data, std::size_t bytes) {
+  std::size_t count = 1;
+  for (std::size_t d : shape) count *= d;
+  if (count == 0 ? bytes != 0 : bytes % count != 0)
+    throw Error("a .npy array of " + std::to_string(count) + " " + descr + " values cannot hold " +
+                std::to_string(bytes) + " bytes");
+  std::string file = npy_header(descr, shape);
+  file.append(static_cast<const char*>(data), bytes);
+  return file;
+}
+
+std::string encode_npy_matrix(const Eigen::MatrixXd& values, NpyDtype dtype) {
+  const bool single = dtype == NpyDtype::float32;
+  std::string bytes =
+      npy_header(single ? "<f4" : "<f8", {std::size_t(values.rows()), std::size_t(values.cols())});
   const std::size_t item_size = single ? 4 : 8;
   const std::size_t data_start = bytes.size();
   bytes.resize(data_start + std::size_t(values.size()) * item_size);

@@ -2,23 +2,33 @@
 #include "image/image_difference.hpp"
 
 #include <cmath>
+#include <limits>
 #include <relume/error.hpp>
 
 namespace relume {
 
+double peak_signal_to_noise_db(const ImageDifference& difference) {
+  if (difference.mean_squared_difference == 0) return std::numeric_limits<double>::infinity();
+  return -10.0 * std::log10(difference.mean_squared_difference);
+}
+
 ImageDifference image_difference(const Image& image, const Image& reference,
-                                 const std::string& image_label,
-                                 const std::string& reference_label) {
+                                 const std::string& image_label, const std::string& reference_label,
+                                 const std::vector<std::uint8_t>& mask) {
   if (image.width != reference.width || image.height != reference.height ||
       image.channels != reference.channels)
     throw Error(image_label + " is " + std::to_string(image.width) + "x" +
                 std::to_string(image.height) + " with " + std::to_string(image.channels) +
                 " channels, " + reference_label + " is " + std::to_string(reference.width) + "x" +
                 std::to_string(reference.height) + " with " + std::to_string(reference.channels));
+  if (!mask.empty() && mask.size() != std::size_t(image.width) * image.height)
+    throw Error("the mask has " + std::to_string(mask.size()) + " pixels but " + image_label +
+                " has " + std::to_string(std::size_t(image.width) * image.height));
   ImageDifference result;
-  result.values = image.pixels.size();
   double difference = 0, energy = 0;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    if (!mask.empty() && !mask[i / image.channels]) continue;
+    ++result.values;
     const double a = image.pixels[i], r = reference.pixels[i];
     if (!std::isfinite(a) || !std::isfinite(r)) {
       const std::size_t pixel = i / image.channels;
@@ -39,6 +49,7 @@ ImageDifference image_difference(const Image& image, const Image& reference,
       result.max_channel = int(i % image.channels);
     }
   }
+  result.mean_squared_difference = result.values > 0 ? difference / double(result.values) : 0;
   result.relative_squared_error = energy > 0 ? difference / energy : (difference > 0 ? 1.0 : 0.0);
   return result;
 }

@@ -1,27 +1,37 @@
 // How far an image is from a reference image of the same size: the relative squared error (the
 // per-image form of paper Eq. 16, sum (a - r)^2 / sum r^2), the largest absolute difference and
 // where it is, and how many values are negative (a relit compressed field can undershoot zero,
-// which an 8-bit output then shows as black).
+// which an 8-bit output then shows as black), and the mean squared difference behind RMS and
+// PSNR. A mask restricts every figure to the pixels inside.
 #pragma once
 
+#include <cstdint>
 #include <relume/image.hpp>
 #include <string>
+#include <vector>
 
 namespace relume {
 
 struct ImageDifference {
   // 0 when both images are all zero, 1 when only the reference is.
   double relative_squared_error = 0;
+  double mean_squared_difference = 0;  // over the compared values; RMS is its square root
   double max_abs_difference = 0;
   int max_x = 0, max_y = 0, max_channel = 0;  // where the largest difference is
   std::size_t negative_values = 0;            // in the image (not the reference)
-  std::size_t values = 0;
+  std::size_t values = 0;                     // compared (inside the mask)
 };
 
-// Throws Error naming both labels when the images differ in size or channels, or when either
-// holds NaN or Inf.
+// PSNR in dB for a peak value of 1 (the full range of 8- and 16-bit images, as idiff takes it):
+// 10 log10(1 / mean squared difference); +infinity for identical images.
+double peak_signal_to_noise_db(const ImageDifference& difference);
+
+// `mask`: width * height entries, 1 = compared; empty compares every pixel. Throws Error naming
+// both labels when the images differ in size or channels, when either holds NaN or Inf, or when
+// the mask's size is not the images'.
 ImageDifference image_difference(const Image& image, const Image& reference,
                                  const std::string& image_label = "image",
-                                 const std::string& reference_label = "reference");
+                                 const std::string& reference_label = "reference",
+                                 const std::vector<std::uint8_t>& mask = {});
 
 }  // namespace relume

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
+#include "image/image_encoding.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -28,23 +30,61 @@ Image read_image(const fs::path& path, const ImageReadOptions& options) {
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw Error("image " + path.string() + " has no pixels");
+  check_memory_need(std::uint64_t(spec.width) * std::uint64_t(spec.height) *
+                        std::uint64_t(spec.nchannels) * sizeof(float),
+                    "image " + path.string() + " (" + std::to_string(spec.width) + "x" +
+                        std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) +
+                        " channels)");
   Image image(spec.width, spec.height, spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
     throw Error("cannot decode image " + path.string() + ": " + input->geterror());
   if (!spec.format.is_floating_point()) image.source_bits = int(spec.format.size()) * 8;
   const bool eight_bit = spec.format.basetype == OIIO::TypeDesc::UINT8;
-  if (eight_bit && options.eight_bit == EightBitEncoding::srgb)
+  const bool srgb = options.eight_bit == EightBitEncoding::srgb ||
+                    (options.eight_bit == EightBitEncoding::automatic &&
+                     !is_linear_color_space(spec.get_string_attribute("oiio:ColorSpace")));
+  if (eight_bit && srgb)
     for (float& v : image.pixels) v = srgb_to_linear(v);
   return image;
 }
 
-bool is_float_image_format(const fs::path& path) {
+namespace {
+
+std::string lower_extension(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+  return ext;
+}
+
+bool is_tiff(const std::string& ext) { return ext == ".tif" || ext == ".tiff"; }
+
+// Whether `path` with `options` is written as linear floats (else exposed, sRGB integers).
+bool writes_float(const fs::path& path, const ImageWriteOptions& options) {
+  return is_tiff(lower_extension(path)) ? options.bits == 0 : is_float_image_format(path);
+}
+
+}  // namespace
+
+bool is_float_image_format(const fs::path& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".exr" || ext == ".hdr" || is_tiff(ext) || ext == ".pfm";
+}
+
+void check_image_write_options(const fs::path& path, const ImageWriteOptions& options) {
+  const std::string ext = lower_extension(path);
+  if (options.bits != 0 && options.bits != 8 && options.bits != 16)
+    throw Error(path.string() + ": integer images have 8 or 16 bits per channel, not " +
+                std::to_string(options.bits));
+  if (options.bits != 0 && is_float_image_format(path) && !is_tiff(ext))
+    throw Error(path.string() + ": " + ext + " holds floats; bits apply to PNG, TIFF and JPEG");
+  if ((ext == ".jpg" || ext == ".jpeg") && options.bits == 16)
+    throw Error(path.string() + ": JPEG holds 8 bits per channel; write PNG or TIFF for 16");
+  if (options.half && ext != ".exr")
+    throw Error(path.string() + ": half floats are for EXR outputs only");
 }
 
 void write_image(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+  check_image_write_options(path, options);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     if (!std::isfinite(image.pixels[i])) {
       const std::size_t pixel = i / image.channels;
@@ -54,17 +94,19 @@ void write_image(const fs::path& path, const Image& image, const ImageWriteOptio
                   std::to_string(image.pixels[i]));
     }
   }
-  const bool as_float = is_float_image_format(path);
+  const bool as_float = writes_float(path, options);
   std::vector<float> data = image.pixels;
   if (!as_float) {
     const float scale = static_cast<float>(std::exp2(options.exposure));
     for (float& v : data) v = linear_to_srgb(std::clamp(v * scale, 0.0f, 1.0f));
   }
+  const OIIO::TypeDesc stored =
+      as_float ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
+               : (options.bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
   write_atomically(path, [&](const fs::path& temp) {
     auto output = OIIO::ImageOutput::create(path.string());
     if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
-    OIIO::ImageSpec spec(image.width, image.height, image.channels,
-                         as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, stored);
     spec.attribute("Software", version_line());
     if (!output->open(temp.string(), spec))
       throw Error("cannot write " + path.string() + ": " + output->geterror());

@@ -3,6 +3,7 @@
 #include "l1/factorization.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -20,6 +21,12 @@ Eigen::MatrixXd gaussian(Eigen::Index rows, Eigen::Index cols, std::mt19937_64& 
 
 void check_input(const Eigen::MatrixXd& R, int terms, const FactorizationOptions& options) {
   if (terms < 1) throw Error("factorization: terms must be >= 1, got " + std::to_string(terms));
+  // More terms than the smaller side of R explain nothing more (rank) and would only size W and F.
+  if (terms > std::min(R.rows(), R.cols()))
+    throw Error("factorization: " + std::to_string(terms) + " terms for a " +
+                std::to_string(R.rows()) + " x " + std::to_string(R.cols()) +
+                " matrix, expected at most min(rows, columns) = " +
+                std::to_string(std::min(R.rows(), R.cols())));
   if (options.max_iterations < 1)
     throw Error("factorization: the iteration cap must be >= 1, got " +
                 std::to_string(options.max_iterations));

@@ -245,10 +245,12 @@ std::optional<EnvironmentLayout> parse_layout_option(const std::string& text) {
 }
 
 EnvironmentLayout detect_layout(int width, int height, const std::string& name) {
-  if (width == 2 * height) return EnvironmentLayout::latlong;
-  if (width == height) return EnvironmentLayout::angular;
-  if (4 * width == 3 * height) return EnvironmentLayout::cross;
   const std::string prefix = "environment map " + name + " (" + size_text(width, height) + "): ";
+  if (width < 1 || height < 1) throw Error(prefix + "has no pixels");
+  const std::int64_t w = width, h = height;  // 4 * width overflows int for wide maps
+  if (w == 2 * h) return EnvironmentLayout::latlong;
+  if (w == h) return EnvironmentLayout::angular;
+  if (4 * w == 3 * h) return EnvironmentLayout::cross;
   struct Known {
     double ratio;
     const char* text;
@@ -263,7 +265,7 @@ EnvironmentLayout detect_layout(int width, int height, const std::string& name) 
       throw Error(prefix + "aspect ratio is close to " + k.text +
                   " but not exact, so the layout is ambiguous; pass --layout " +
                   layout_name(k.layout) + " if that is what it is");
-  if (3 * width == 4 * height)
+  if (3 * w == 4 * h)
     throw Error(prefix +
                 "looks like a horizontal cross (4:3), which is not supported; convert it "
                 "to a vertical cross (3:4), lat-long or angular map");
@@ -277,7 +279,7 @@ void check_layout_size(EnvironmentLayout layout, int width, int height, const st
   if (width < 1 || height < 1) throw Error(prefix + "has no pixels");
   if (layout == EnvironmentLayout::angular && width != height)
     throw Error(prefix + "an angular map must be square");
-  if (layout == EnvironmentLayout::cross && 4 * width != 3 * height)
+  if (layout == EnvironmentLayout::cross && 4 * std::int64_t(width) != 3 * std::int64_t(height))
     throw Error(prefix + "a vertical cross must be 3:4 (width = 3 faces, height = 4 faces)");
   if (layout == EnvironmentLayout::latlong && width < 2)
     throw Error(prefix + "a lat-long map needs at least 2 columns");

@@ -4,14 +4,18 @@
 #include <relume/error.hpp>
 #include <relume/lighting.hpp>
 
+#include "core/memory_budget.hpp"
 #include "lighting/environment_map.hpp"
 
 namespace relume {
 
 Image render_sky(const SkyOptions& options) {
-  if (options.width < 4 || options.width % 2 != 0)
-    throw Error("sky width must be an even number of at least 4, not " +
-                std::to_string(options.width));
+  constexpr int max_width = 32768;  // a 32768 x 16384 map, 6 GB of float RGB
+  if (options.width < 4 || options.width % 2 != 0 || options.width > max_width)
+    throw Error("sky width must be an even number from 4 to " + std::to_string(max_width) +
+                ", not " + std::to_string(options.width));
+  check_memory_need(std::uint64_t(options.width) * std::uint64_t(options.width / 2) * 3 * 4 * 2,
+                    "a sky of width " + std::to_string(options.width));
   const double to_rad = std::numbers::pi / 180;
   const double elevation = options.sun_elevation_deg * to_rad;
   const double azimuth = options.sun_azimuth_deg * to_rad;

@@ -43,6 +43,10 @@ void check_lights(const CompressedField& field, const std::string& where) {
                 std::to_string(field.lights) + " of each");
   check_finite_rows(field.directions, "direction", where);
   check_finite_rows(field.intensities, "intensity", where);
+  for (Eigen::Index i = 0; i < field.directions.rows(); ++i)
+    if (!(field.directions.row(i).cast<double>().norm() > 0))
+      throw Error(where + ": the direction of light " + std::to_string(i) +
+                  " has zero length, expected a direction");
 }
 
 void check_mask(const CompressedField& field, const std::string& where) {

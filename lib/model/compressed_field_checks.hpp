@@ -20,7 +20,7 @@ std::string stored_row_name(std::size_t row);
 // width, height, channels, lights >= 1; terms, clusters >= 0; at most 2^32 functions; a known
 // transform.
 void check_dimensions(const CompressedField& field, const std::string& where);
-// lights rows of directions and intensities, all finite.
+// lights rows of directions and intensities, all finite; no direction of zero length.
 void check_lights(const CompressedField& field, const std::string& where);
 // width x height mask entries.
 void check_mask(const CompressedField& field, const std::string& where);

@@ -9,6 +9,8 @@
 #include <relume/error.hpp>
 #include <string>
 
+#include "core/memory_budget.hpp"
+
 namespace relume {
 namespace {
 
@@ -116,14 +118,23 @@ LightDirections near_uniform_directions(int count, LightLayout layout) {
 }
 
 void validate_synth_options(const SynthOptions& options) {
-  if (options.width < 1 || options.height < 1)
-    throw Error("image size must be at least 1x1, got " + std::to_string(options.width) + "x" +
+  if (options.width < 1 || options.height < 1 || options.width > max_synth_side ||
+      options.height > max_synth_side)
+    throw Error("image size must be from 1x1 to " + std::to_string(max_synth_side) + "x" +
+                std::to_string(max_synth_side) + ", got " + std::to_string(options.width) + "x" +
                 std::to_string(options.height));
-  if (options.lights < 1)
-    throw Error("light count must be at least 1, got " + std::to_string(options.lights));
-  if (options.samples_per_axis < 1)
-    throw Error("samples per pixel axis must be at least 1, got " +
+  if (options.lights < 1 || options.lights > max_synth_lights)
+    throw Error("light count must be from 1 to " + std::to_string(max_synth_lights) + ", got " +
+                std::to_string(options.lights));
+  if (options.samples_per_axis < 1 || options.samples_per_axis > max_synth_samples_per_axis)
+    throw Error("samples per pixel axis must be from 1 to " +
+                std::to_string(max_synth_samples_per_axis) + ", got " +
                 std::to_string(options.samples_per_axis));
+  check_memory_need(std::uint64_t(options.width) * std::uint64_t(options.height) * 3 *
+                        std::uint64_t(options.lights) * sizeof(float),
+                    "a synthetic field of " + std::to_string(options.width) + "x" +
+                        std::to_string(options.height) + " pixels and " +
+                        std::to_string(options.lights) + " lights");
 }
 
 const Eigen::Vector3d& SyntheticScene::ground_albedo_at(const Eigen::Vector3d& point) const {

@@ -40,7 +40,13 @@ struct SynthOptions {
   unsigned threads = 0;      // 0 = all cores
 };
 
-// Throws relume::Error naming the option when a size, light count or sample count is < 1.
+// Sane maxima of the options: beyond them a render would run for days or not fit any memory.
+inline constexpr int max_synth_side = 16384;
+inline constexpr int max_synth_lights = 65536;
+inline constexpr int max_synth_samples_per_axis = 64;
+
+// Throws relume::Error naming the option when a size, light count or sample count is < 1 or
+// above its maximum, or when the field would not fit the memory budget (core/memory_budget.hpp).
 void validate_synth_options(const SynthOptions& options);
 
 struct SyntheticSphere {

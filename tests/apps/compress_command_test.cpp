@@ -195,6 +195,78 @@ TEST(CompressCommand, TargetErrorReachesTheTargetWithTheSmallestContainerTried) 
   EXPECT_GT(relative_error(field, compressed, true, 0).mean, target);
 }
 
+// --target-bytes: the file fits, the chosen pair has the lowest error of the pairs that fit, and a
+// smaller budget keeps fewer residual entries at a higher error.
+TEST(CompressCommand, TargetBytesFitsWithTheLowestErrorOfThePairsTried) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(5));
+  const auto compress = [&](const std::string& name, const std::string& target) {
+    const auto result = testing::run_relume(
+        "compress '" + (dir / "field").string() + "' -o '" + (dir / (name + ".relume")).string() +
+        "' " + target + " --report '" + (dir / (name + ".json")).string() + "'");
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    return read_json(dir / (name + ".json"));
+  };
+  const nlohmann::json roomy = compress("roomy", "--target-bytes 100000000");
+  ASSERT_TRUE(roomy["rate_target"]["met"].get<bool>());
+  std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+  for (const auto& tried : roomy["rate_target"]["tried"])
+    for (const auto& point : tried["points"])
+      smallest = std::min(smallest, point["bytes"].get<std::uint64_t>());
+  const std::uint64_t budget = (smallest + roomy["bytes"].get<std::uint64_t>()) / 2;
+
+  const nlohmann::json tight = compress("tight", "--target-bytes " + std::to_string(budget));
+  const nlohmann::json& choice = tight["rate_target"];
+  EXPECT_TRUE(choice["met"].get<bool>());
+  EXPECT_LE(std::filesystem::file_size(dir / "tight.relume"), budget);
+  EXPECT_GT(tight["error_masked"].get<double>(), roomy["error_masked"].get<double>());
+  EXPECT_LT(tight["residual_nonzeros"].get<std::uint64_t>(),
+            roomy["residual_nonzeros"].get<std::uint64_t>());
+  const CompressedField stored = read_container(dir / "tight.relume");
+  const double chosen_error = choice["chosen"]["point"]["error_masked"].get<double>();
+  EXPECT_NEAR(relative_error(small_field(5), stored, true).mean, chosen_error, 1e-9);
+  for (const auto& tried : choice["tried"])
+    if (tried["met"].get<bool>()) {
+      EXPECT_LE(tried["choice"]["bytes"].get<std::uint64_t>(), budget);
+      EXPECT_GE(tried["choice"]["error_masked"].get<double>(), chosen_error);
+    }
+}
+
+// --target-psnr: the PSNR of the file as written reaches the target with the fewest bytes of the
+// pairs that reach it; a target no pair reaches is said to be missed, not claimed.
+TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(6));
+  const double target = 38;
+  auto result =
+      testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+                          (dir / "p.relume").string() + "' --target-psnr " +
+                          std::to_string(target) + " --report '" + (dir / "p.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report = read_json(dir / "p.json");
+  const nlohmann::json& choice = report["rate_target"];
+  ASSERT_TRUE(choice["met"].get<bool>()) << choice.dump();
+  EXPECT_GE(report["psnr_8bit"]["mask"].get<double>(), target);
+  const std::uint64_t bytes = std::filesystem::file_size(dir / "p.relume");
+  EXPECT_EQ(choice["chosen"]["point"]["bytes"].get<std::uint64_t>(), bytes);
+  for (const auto& tried : choice["tried"])
+    if (tried["met"].get<bool>()) EXPECT_GE(tried["choice"]["bytes"].get<std::uint64_t>(), bytes);
+
+  result = testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+                               (dir / "q.relume").string() + "' --target-psnr 300 --report '" +
+                               (dir / "q.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_FALSE(read_json(dir / "q.json")["rate_target"]["met"].get<bool>());
+
+  result =
+      testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+                          (dir / "r.relume").string() + "' --target-psnr 40 --target-bytes 1000");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("--target-bytes and --target-psnr are two targets"),
+            std::string::npos)
+      << result.output;
+}
+
 // scripts/check_error.py's output for ORIGINAL against DECOMPRESSED, with the error it printed.
 struct IndependentCheck {
   std::string output;
@@ -289,7 +361,7 @@ TEST(CompressCommand, OpenClAssignmentIsTheDefaultAndAgreesWithTheCpuPath) {
   std::map<std::string, nlohmann::json> reports;
   for (const std::string assign : {"", "--assign cpu"}) {
     const auto result =
-        testing::run_relume("compress '" + bear + "' -o '" + (dir / "b.relume").string() +
+        testing::run_relume("-y compress '" + bear + "' -o '" + (dir / "b.relume").string() +
                             "' --clusters 16 --terms 3 --residual 4 --iterations 2 --threads 2 " +
                             assign + " --report '" + (dir / "b.json").string() + "'");
     ASSERT_EQ(result.exit_code, 0) << result.output;

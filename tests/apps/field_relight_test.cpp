@@ -1,5 +1,6 @@
 // The reference relighter against an independent sum over the real DiLiGenT images, through the
-// CLI: relight(ball, L) == sum_i L_i * image_i / intensity_i to float precision.
+// CLI: relight(ball, L) == sum_i L_i * image_i / intensity_i to float precision, everywhere with
+// --no-mask and inside mask.png (black outside) by default.
 #include <OpenImageIO/imageio.h>
 
 #include <fstream>
@@ -36,10 +37,12 @@ TEST(FieldRelight, DiligentBallMatchesIndependentSum) {
       out << l[0] << " " << l[1] << " " << l[2] << "\n";
     }
   }
-  const auto result =
-      testing::run_relume("relight '" + ball.string() + "' --lights '" + (dir / "L.txt").string() +
-                          "' -o '" + (dir / "x.exr").string() + "'");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const char* output : {"x.exr", "masked.exr"}) {
+    const auto result = testing::run_relume(
+        "relight '" + ball.string() + "' --lights '" + (dir / "L.txt").string() + "' -o '" +
+        (dir / output).string() + "'" + (output == std::string("x.exr") ? " --no-mask" : ""));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
 
   std::vector<std::string> names;
   std::ifstream list(ball / "filenames.txt");
@@ -71,6 +74,20 @@ TEST(FieldRelight, DiligentBallMatchesIndependentSum) {
   }
   EXPECT_GT(peak, 1.0) << "the test image is not trivially dark";
   EXPECT_LT(worst, 1e-6) << "relative error against the independent sum";
+
+  OIIO::ImageSpec mask_spec;
+  const auto mask = read_raw(ball / "mask.png", &mask_spec);
+  const auto masked = read_raw(dir / "masked.exr", &out_spec);
+  ASSERT_EQ(masked.size(), relit.size());
+  std::size_t outside = 0;
+  for (std::size_t k = 0; k < masked.size(); ++k) {
+    const std::size_t pixel = k / out_spec.nchannels;
+    const bool inside = mask[pixel * mask_spec.nchannels] > 0;
+    outside += !inside;
+    EXPECT_EQ(masked[k], inside ? relit[k] : 0.0f) << "value " << k;
+    if (::testing::Test::HasFailure()) break;
+  }
+  EXPECT_GT(outside, relit.size() / 2) << "the ball's mask leaves most of the frame out";
 }
 
 }  // namespace

@@ -108,9 +108,9 @@ TEST_F(StampedOutputs, QuietPrintsNothingAndVerbosePrintsMore) {
   auto result = run_relume("-q " + decompress + "'");
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_EQ(result.output, "");
-  result = run_relume(decompress + "'");
+  result = run_relume("-y " + decompress + "'");
   EXPECT_THAT(result.output, HasSubstr("wrote "));
-  result = run_relume("-v " + decompress + "'");
+  result = run_relume("-v -y " + decompress + "'");
   EXPECT_THAT(result.output, HasSubstr(version_line()));
   EXPECT_THAT(result.output, HasSubstr("relume: decompress done in"));
   // A command's results are not messages: info prints its description even when quiet.

@@ -17,17 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// sum (a - b)^2 / sum b^2 over every pixel and channel.
-double relative_difference(const Image& a, const Image& b) {
-  EXPECT_EQ(a.pixels.size(), b.pixels.size());
-  double difference = 0, energy = 0;
-  for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
-    difference += std::pow(double(a.pixels[i]) - b.pixels[i], 2);
-    energy += double(b.pixels[i]) * b.pixels[i];
-  }
-  return difference / energy;
-}
-
 class RelightCommands : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -52,7 +41,7 @@ class RelightCommands : public ::testing::Test {
   // `relume relight` of the container into `output` with extra arguments; returns the image.
   static Image relight(const std::string& input, const std::string& light_arguments,
                        const std::string& output) {
-    run_or_fail("relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
+    run_or_fail("-y relight '" + input + "' " + light_arguments + " -o '" + path(output) + "'");
     return read_image(path(output));
   }
 
@@ -67,15 +56,16 @@ TEST_F(RelightCommands, OpenClAgreesWithTheReferenceAndTheDecompressedField) {
   const Image reference = relight(path("scene.relume"), lights + " --cpu", "reference.exr");
   EXPECT_EQ(opencl.width, 24);
   EXPECT_EQ(opencl.height, 20);
-  EXPECT_LT(relative_difference(opencl, reference), 1e-10);  // squared: 1e-5 relative L2
+  EXPECT_LT(testing::relative_squared_difference(opencl, reference),
+            1e-10);  // squared: 1e-5 relative L2
 
   run_or_fail("decompress '" + path("scene.relume") + "' -o '" + path("decompressed") + "'");
   const Image decompressed = relight(path("decompressed"), lights, "decompressed.exr");
-  EXPECT_LT(relative_difference(decompressed, reference), 1e-10);
+  EXPECT_LT(testing::relative_squared_difference(decompressed, reference), 1e-10);
 
   // Against the uncompressed scene: lossy, yet close.
   const Image original = relight(path("scene"), lights, "original.exr");
-  const double error = relative_difference(opencl, original);
+  const double error = testing::relative_squared_difference(opencl, original);
   EXPECT_GT(error, 0);
   EXPECT_LT(error, 0.05);
 }
@@ -87,7 +77,7 @@ TEST_F(RelightCommands, FewerResidualEntriesAreLessAccurate) {
   for (const char* residual : {"all", "3", "0"}) {
     const Image image = relight(path("scene.relume"), lights + " --residual " + residual,
                                 std::string("cap-") + residual + ".exr");
-    const double error = relative_difference(image, original);
+    const double error = testing::relative_squared_difference(image, original);
     EXPECT_GT(error, previous) << "--residual " << residual;
     previous = error;
   }
@@ -103,7 +93,7 @@ TEST_F(RelightCommands, SequenceFramesEqualSingleRelightsAndReportTheirError) {
         path("scene.relume"),
         "--env '" + path("sky.exr") + "' --rotate " + std::to_string(120 * frame) + " --residual 2",
         "single.exr");
-    EXPECT_LT(relative_difference(sequence, single), 1e-10) << "frame " << frame;
+    EXPECT_LT(testing::relative_squared_difference(sequence, single), 1e-10) << "frame " << frame;
   }
   EXPECT_FALSE(fs::exists(path("frames/0003.exr")));
   std::ifstream in(path("sequence.json"));

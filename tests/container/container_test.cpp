@@ -626,7 +626,8 @@ TEST(Container, ADamagedCodedSectionIsRefusedNamingTheSection) {
     const std::string message = read_error(path);
     EXPECT_NE(message.find(path.string() + ": section 'clusters'"), std::string::npos) << message;
   }
-  // A table that claims more decoded bytes than the header allows is refused before decoding.
+  // A table that claims more decoded bytes than the coded bytes can hold is refused before
+  // anything is allocated.
   std::string bytes = original;
   ByteWriter huge;
   huge.u64(std::uint64_t(1) << 40);
@@ -636,8 +637,8 @@ TEST(Container, ADamagedCodedSectionIsRefusedNamingTheSection) {
   fix_checksums(bytes, layout);
   write_bytes(path, bytes);
   const std::string message = read_error(path);
-  EXPECT_NE(message.find("section 'clusters' decodes to 1099511627776 bytes"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("section 'clusters': "), std::string::npos) << message;
+  EXPECT_NE(message.find("cannot decode to 1099511627776 bytes"), std::string::npos) << message;
 }
 
 TEST(SectionCoding, EveryFilterRoundTripsAndUnknownCodingsAreRefused) {

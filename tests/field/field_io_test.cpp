@@ -104,22 +104,6 @@ TEST(FieldIo, SixteenBitPngIsReadAtSixteenBits) {
   EXPECT_FLOAT_EQ(field.values(1, 0), 1.0f);
 }
 
-TEST(FieldIo, EightBitIsLinearByDefaultAndSrgbOnRequest) {
-  TempDir dir;
-  fs::create_directories(dir / "f");
-  std::ofstream(dir / "f/light_directions.txt") << "0 0 1\n";
-  const std::uint8_t value = 128;
-  auto out = OIIO::ImageOutput::create((dir / "f/001.png").string());
-  ASSERT_TRUE(
-      out->open((dir / "f/001.png").string(), OIIO::ImageSpec(1, 1, 1, OIIO::TypeDesc::UINT8)));
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, &value));
-  out->close();
-  EXPECT_FLOAT_EQ(load_field(dir / "f").values(0, 0), 128.0f / 255.0f);
-  FieldLoadOptions srgb;
-  srgb.image.eight_bit = EightBitEncoding::srgb;
-  EXPECT_NEAR(load_field(dir / "f", srgb).values(0, 0), 0.2158605, 1e-6);
-}
-
 TEST(FieldIo, RealDiligentAndRtiLoad) {
   RELUME_REQUIRE_SHARED_DATA(data);
   const ReflectanceField bear = load_field(data / "olat/diligent-bear-crop8");

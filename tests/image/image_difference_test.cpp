@@ -32,7 +32,16 @@ TEST(ImageDifference, HandComputedFigures) {
   EXPECT_EQ(d.max_channel, 2);
   EXPECT_EQ(d.negative_values, 1u);
   EXPECT_EQ(d.values, 6u);
+  EXPECT_DOUBLE_EQ(d.mean_squared_difference, (1 + 0.25 + 9) / 6.0);
+  EXPECT_DOUBLE_EQ(peak_signal_to_noise_db(d), -10 * std::log10((1 + 0.25 + 9) / 6.0));
   EXPECT_EQ(image_difference(reference, reference).relative_squared_error, 0);
+  EXPECT_TRUE(std::isinf(peak_signal_to_noise_db(image_difference(reference, reference))));
+  // A difference of 1/255 everywhere: RMS 1/255, PSNR 20 log10(255) = 48.13 dB.
+  Image shifted = reference;
+  for (float& v : shifted.pixels) v += 1.0f / 255;
+  const ImageDifference step = image_difference(shifted, reference);
+  EXPECT_NEAR(std::sqrt(step.mean_squared_difference), 1.0 / 255, 1e-7);
+  EXPECT_NEAR(peak_signal_to_noise_db(step), 20 * std::log10(255.0), 1e-4);
 }
 
 TEST(ImageDifference, AllZeroReference) {
@@ -68,6 +77,10 @@ TEST(CompareCommand, PrintsAndWritesTheFiguresOfTwoFiles) {
   EXPECT_DOUBLE_EQ(report["relative_l2_error"].get<double>(), std::sqrt(1.025));
   EXPECT_EQ(report["negative_values"], 1);
   EXPECT_EQ(report["max_at"]["channel"], 2);
+  EXPECT_DOUBLE_EQ(report["rms"].get<double>(), std::sqrt(10.25 / 6));
+  EXPECT_NEAR(report["psnr_db"].get<double>(), -10 * std::log10(10.25 / 6), 1e-9);
+  EXPECT_NE(result.output.find("RMS 1.307"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("PSNR -2.33 dB"), std::string::npos) << result.output;
 
   write_image(dir / "small.exr", Image(1, 1, 3));
   result = testing::run_relume("compare '" + (dir / "small.exr").string() + "' '" +
@@ -76,6 +89,42 @@ TEST(CompareCommand, PrintsAndWritesTheFiguresOfTwoFiles) {
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("small.exr is 1x1"), std::string::npos) << result.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.json"));
+}
+
+TEST(CompareCommand, FailAboveTheThresholdAndJsonOnStdout) {
+  testing::TempDir dir;
+  write_image(dir / "image.exr", two_by_one(1, 2, 1, -0.5f, 1, 3));
+  write_image(dir / "reference.exr", two_by_one(1, 2, 2, 0, 1, 0));
+  const std::string compare =
+      "compare '" + (dir / "image.exr").string() + "' '" + (dir / "reference.exr").string() + "'";
+  auto result = testing::run_relume(compare + " --fail 2");
+  EXPECT_EQ(result.exit_code, 0) << "1.025 is below 2: " << result.output;
+  result = testing::run_relume(compare + " --fail 1 --json '" + (dir / "f.json").string() + "'");
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("is above --fail 1"), std::string::npos) << result.output;
+  std::ifstream in(dir / "f.json");
+  const nlohmann::json failed = nlohmann::json::parse(in);  // written before failing
+  EXPECT_EQ(failed["failed"], true);
+  EXPECT_EQ(failed["fail_threshold"], 1);
+
+  // --json -: stdout holds only the JSON (the text line goes to stderr).
+  const std::string stdout_file = (dir / "stdout.json").string();
+  // (run_command adds 2>&1 at the end: the group keeps stderr away from the file.)
+  const auto json = testing::run_command("{ " + std::string(RELUME_BINARY) + " " + compare +
+                                         " --json - 2>/dev/null; } > '" + stdout_file + "'");
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  std::ifstream printed(stdout_file);
+  const nlohmann::json parsed = nlohmann::json::parse(printed);
+  EXPECT_DOUBLE_EQ(parsed["relative_squared_error"].get<double>(), 1.025);
+  EXPECT_NE(parsed["software"].get<std::string>().find("relume"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists("-"));
+  // Identical images: PSNR is infinite, null in JSON.
+  const auto same = testing::run_command(std::string(RELUME_BINARY) + " compare '" +
+                                         (dir / "reference.exr").string() + "' '" +
+                                         (dir / "reference.exr").string() + "' --json -");
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("PSNR infinite"), std::string::npos) << same.output;
+  EXPECT_NE(same.output.find("\"psnr_db\": null"), std::string::npos) << same.output;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -15,6 +16,7 @@
 #include <relume/lighting.hpp>
 
 #include "field/light_file.hpp"
+#include "lighting/best_rotation.hpp"
 #include "lighting/environment_map.hpp"
 #include "support/test_support.hpp"
 
@@ -276,6 +278,38 @@ TEST(LightVectorCoverage, FrontHemisphereLightSetLeavesAboutHalfOutside) {
   EXPECT_NEAR(outside[0], outside[2], 0.002);
 }
 
+// A latlong map that is bright (1) within `radius` degrees of `centre` and dark (0.001) elsewhere.
+EnvironmentMap bright_patch_map(const Eigen::Vector3d& centre, double radius) {
+  const MapGeometry g{EnvironmentLayout::latlong, 256, 128};
+  Image image(g.width, g.height, 3);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      const double angle = std::acos(std::clamp(pixel_direction(g, x, y)->dot(centre), -1.0, 1.0));
+      for (int c = 0; c < 3; ++c) image.at(x, y, c) = angle < radius * pi / 180 ? 1.0f : 0.001f;
+    }
+  return make_environment_map(std::move(image), g.layout, "patch");
+}
+
+TEST(LightVectorCoverage, TheBestRotationTurnsTheBrightPartOntoTheLights) {
+  // Lights within 37 degrees of +z; the bright part of the map (20 degrees wide) towards +x,
+  // which R_y(270) turns to +z.
+  const LightDirections front = fibonacci_directions(400, true);
+  std::vector<Eigen::Index> cap;
+  for (Eigen::Index i = 0; i < front.rows(); ++i)
+    if (front(i, 2) > 0.8f) cap.push_back(i);
+  const LightDirections lights = front(cap, Eigen::all);
+  const LightVectorIntegrator integrator(bright_patch_map({1, 0, 0}, 20), lights);
+  const BestRotation best = find_best_rotation(integrator);
+  EXPECT_GT(integrator.integrate(0).outside_fraction(), 0.9);
+  EXPECT_LT(best.outside_fraction, 0.5 * integrator.integrate(0).outside_fraction());
+  EXPECT_DOUBLE_EQ(best.outside_fraction, integrator.integrate(best.degrees).outside_fraction());
+  EXPECT_NEAR(best.degrees, 270, 20);
+  // No whole degree of the turn does clearly better (the search tries 80 of them).
+  for (int degrees = 0; degrees < 360; ++degrees)
+    EXPECT_GE(integrator.integrate(degrees).outside_fraction(), best.outside_fraction - 0.01)
+        << degrees;
+}
+
 TEST(LightVectorCoverage, RadiusIsTheMedianSpacing) {
   EXPECT_NEAR(coverage_radius(cube_directions()) * 180 / pi, 35.26, 0.01);  // face to corner/edge
   LightDirections one(1, 3);
@@ -351,6 +385,31 @@ TEST(LightsCommand, WritesOneRowPerLightAndReportsCoverage) {
                                            "' --env '" + (dir / "white.exr").string() + "'");
   ASSERT_EQ(printed.exit_code, 0) << printed.output;
   EXPECT_THAT(printed.output, HasSubstr("\n2.09"));
+}
+
+TEST(LightsCommand, RotateAutoNamesTheBestRotationAndObeysQuiet) {
+  testing::TempDir dir;
+  write_text(dir / "front.txt", "0 0 1\n0.3 0 1\n-0.3 0 1\n0 0.3 1\n0 -0.3 1\n");
+  write_image(dir / "patch.exr", bright_patch_map({1, 0, 0}, 30).radiance);
+  const std::string base = "lights --dirs '" + (dir / "front.txt").string() + "' --env '" +
+                           (dir / "patch.exr").string() + "'";
+  const auto fixed = testing::run_relume(base + " -o '" + (dir / "fixed.txt").string() + "'");
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.output;
+  EXPECT_THAT(fixed.output, HasSubstr("would leave")) << "the better rotation is named";
+  const auto automatic =
+      testing::run_relume(base + " --rotate auto -o '" + (dir / "auto.txt").string() + "'");
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.output;
+  EXPECT_THAT(automatic.output, HasSubstr("--rotate auto chose"));
+  // The auto rows carry more of the map than the unrotated ones.
+  EXPECT_GT(read_rgb_rows(dir / "auto.txt", "light vector").sum(),
+            2 * read_rgb_rows(dir / "fixed.txt", "light vector").sum());
+  const auto quiet =
+      testing::run_relume("-q " + base + " --rotate auto -o '" + (dir / "q.txt").string() + "'");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
+  const auto bad = testing::run_relume(base + " --rotate sideways");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_THAT(bad.output, HasSubstr("sideways"));
 }
 
 TEST(LightsCommand, ExitsNonZeroWithAMessageOnBadInput) {

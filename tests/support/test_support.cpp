@@ -62,4 +62,33 @@ CommandResult run_relume(const std::string& arguments) {
   return run_command(std::string("RELUME_QUIET=1 '") + RELUME_BINARY + "' " + arguments);
 }
 
+TempDir* CommandSuite::folder_ = nullptr;
+
+void CommandSuite::SetUpTestSuite() { folder_ = new TempDir; }
+
+void CommandSuite::TearDownTestSuite() {
+  delete folder_;
+  folder_ = nullptr;
+}
+
+std::string CommandSuite::path(const std::string& name) {
+  return (folder_->path() / name).string();
+}
+
+CommandResult CommandSuite::run_or_fail(const std::string& arguments) {
+  const CommandResult result = run_relume(arguments);
+  EXPECT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
+  return result;
+}
+
+double relative_squared_difference(const Image& a, const Image& b) {
+  EXPECT_EQ(a.pixels.size(), b.pixels.size());
+  double difference = 0, energy = 0;
+  for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+    difference += (double(a.pixels[i]) - b.pixels[i]) * (double(a.pixels[i]) - b.pixels[i]);
+    energy += double(b.pixels[i]) * b.pixels[i];
+  }
+  return difference / energy;
+}
+
 }  // namespace relume::testing

@@ -1,5 +1,6 @@
 // Helpers shared by the tests: the real-data folder (RELUME_DATA or ../shared/data), a fresh
-// temporary folder per test, and running commands and the built `relume` binary.
+// temporary folder per test, running commands and the built `relume` binary, a fixture for
+// suites of commands that share one folder, and the relative difference of two images.
 #pragma once
 
 #include <gmock/gmock.h>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <relume/image.hpp>
 #include <string>
 
 namespace relume::testing {
@@ -52,6 +54,25 @@ CommandResult run_command(const std::string& command);
 
 // Runs the built relume binary with the given arguments (shell-quoted here).
 CommandResult run_relume(const std::string& arguments);
+
+// A suite of command tests that share one temporary folder, made before its first test and
+// removed after its last. A suite's own SetUpTestSuite calls CommandSuite::SetUpTestSuite()
+// first, then prepares its inputs with run_or_fail.
+class CommandSuite : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite();
+  static void TearDownTestSuite();
+  // `name` inside the suite's folder.
+  static std::string path(const std::string& name);
+  // run_relume(arguments), expecting exit status 0 (a failure names the arguments and output).
+  static CommandResult run_or_fail(const std::string& arguments);
+
+ private:
+  static TempDir* folder_;
+};
+
+// sum (a - b)^2 / sum b^2 over every pixel and channel (a failure when the sizes differ).
+double relative_squared_difference(const Image& a, const Image& b);
 
 // The repository's root folder (for its scripts).
 inline std::filesystem::path source_dir() { return RELUME_SOURCE_DIR; }

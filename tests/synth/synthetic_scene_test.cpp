@@ -366,7 +366,7 @@ TEST(SynthCommand, HemisphereFlagAndBadArguments) {
 
   result = testing::run_relume("synth -o '" + (dir / "bad").string() + "' --lights 0");
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_NE(result.output.find("light count must be at least 1, got 0"), std::string::npos)
+  EXPECT_NE(result.output.find("light count must be from 1 to 65536, got 0"), std::string::npos)
       << result.output;
   result = testing::run_relume("synth -o '" + (dir / "bad").string() + "' --size 32by32");
   EXPECT_EQ(result.exit_code, 1);

@@ -1,0 +1,31 @@
+// The options that say how an uncompressed field is read, shared by `compress` and `relight`:
+// the object mask (`--mask FILE` for any input, replacing a folder's mask.png; `--no-mask` keeps
+// every pixel) and the encoding of 8-bit images (`--input-encoding auto|linear|srgb`, with
+// `--linear` and `--srgb` as short forms).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <relume/field.hpp>
+#include <string>
+
+namespace relume {
+
+struct FieldInputOptions {
+  std::string mask_file;
+  bool no_mask = false;
+  std::string input_encoding = "auto";
+  bool linear = false;
+  bool srgb = false;
+};
+
+void add_field_input_options(CLI::App& command, FieldInputOptions& options);
+
+// The options as one line ("mask folder, encoding auto"), for checkpoint fingerprints.
+std::string describe_field_input(const FieldInputOptions& options);
+
+// Loads `input` with `threads` workers as the options say: decides the input encoding (once)
+// and notes the decision with its reason, and shows a progress bar while the images load.
+ReflectanceField load_input_field(const std::string& input, const FieldInputOptions& options,
+                                  unsigned threads);
+
+}  // namespace relume

@@ -1,0 +1,221 @@
+// Implementation of the rate targets (see rate_control.hpp).
+#include "compress/rate_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <relume/error.hpp>
+#include <utility>
+
+#include "model/field_psnr.hpp"
+
+namespace relume {
+namespace {
+
+struct RatePoint {
+  std::size_t entries = 0;  // residual entries kept, the best first
+  std::uint64_t bytes = 0;
+  double error = 0;  // Eq. 16 over the masked functions
+  double psnr = 0;   // inside the region; measured for PSNR targets only
+};
+
+nlohmann::ordered_json to_json(const RatePoint& point, bool psnr) {
+  nlohmann::ordered_json out = {
+      {"residual_entries", point.entries}, {"bytes", point.bytes}, {"error_masked", point.error}};
+  if (psnr) out["psnr_8bit"] = point.psnr;
+  return out;
+}
+
+// One candidate's residual cut to any number of its best entries, measured as stored.
+class RateCurve {
+ public:
+  RateCurve(const ReflectanceField& original, const CompressedField& stored,
+            const std::vector<double>& row_weight, const ContainerOptions& container,
+            const RateTarget& target, unsigned threads)
+      : original_(original),
+        stored_(stored),
+        gains_(residual_gains(stored.residual, row_weight)),
+        container_(container),
+        target_(target),
+        threads_(threads) {
+    sorted_ = gains_;
+    std::sort(sorted_.begin(), sorted_.end(), std::greater<float>());
+  }
+
+  std::size_t entries() const { return sorted_.size(); }
+
+  CompressedField at(std::size_t entries) const {
+    CompressedField field = stored_;
+    keep_entries_with_gain(
+        field.residual, gains_,
+        entries == 0 ? HUGE_VALF : sorted_[std::min(entries, sorted_.size()) - 1]);
+    return field;
+  }
+
+  RatePoint measure(std::size_t entries) {
+    const CompressedField field = at(entries);
+    RatePoint point;
+    point.entries = field.residual.nonzeros();
+    point.bytes = plan_container(field, container_).file_bytes;
+    point.error = relative_error(original_, field, true, all_residual_entries, threads_).mean;
+    if (target_.psnr > 0)
+      point.psnr = psnr_8bit(original_, field, target_.psnr_white, all_residual_entries, threads_,
+                             target_.region)
+                       .masked;
+    points_.push_back(point);
+    return point;
+  }
+
+  const std::vector<RatePoint>& points() const { return points_; }
+
+ private:
+  const ReflectanceField& original_;
+  const CompressedField& stored_;
+  std::vector<float> gains_, sorted_;
+  const ContainerOptions& container_;
+  const RateTarget& target_;
+  unsigned threads_;
+  std::vector<RatePoint> points_;
+};
+
+// Given !good(lo) and good(hi) for a monotone good(n): the last n known not good and the first
+// known good, within 0.1% of hi of each other.
+std::pair<std::size_t, std::size_t> bisect(std::size_t lo, std::size_t hi,
+                                           const std::function<bool(std::size_t)>& good) {
+  const std::size_t tolerance = std::max<std::size_t>(1, hi / 1000);
+  while (hi - lo > tolerance) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    (good(mid) ? hi : lo) = mid;
+  }
+  return {lo, hi};
+}
+
+struct CurveChoice {
+  RatePoint point;
+  bool met = false;
+};
+
+CurveChoice fit_bytes(RateCurve& curve, std::uint64_t bytes) {
+  const RatePoint none = curve.measure(0);
+  if (none.bytes > bytes) return {none, false};
+  const RatePoint all = curve.measure(curve.entries());
+  if (all.bytes <= bytes) return {all, true};
+  const std::size_t fits = bisect(0, curve.entries(), [&](std::size_t n) {
+                             return curve.measure(n).bytes > bytes;
+                           }).first;
+  const RatePoint point = curve.measure(fits);
+  return {point, point.bytes <= bytes};
+}
+
+CurveChoice reach_psnr(RateCurve& curve, double psnr) {
+  const RatePoint none = curve.measure(0);
+  if (none.psnr >= psnr) return {none, true};
+  const RatePoint all = curve.measure(curve.entries());
+  if (all.psnr < psnr) return {all, false};
+  const std::size_t enough = bisect(0, curve.entries(), [&](std::size_t n) {
+                               return curve.measure(n).psnr >= psnr;
+                             }).second;
+  const RatePoint point = curve.measure(enough);
+  return {point, point.psnr >= psnr};
+}
+
+// Whether `a` is a better choice than `b` for the target.
+bool better(const CurveChoice& a, const CurveChoice& b, const RateTarget& target) {
+  if (a.met != b.met) return a.met;
+  if (target.bytes > 0)
+    return a.met ? a.point.error < b.point.error : a.point.bytes < b.point.bytes;
+  return a.met ? a.point.bytes < b.point.bytes : a.point.psnr > b.point.psnr;
+}
+
+}  // namespace
+
+TargetSearch compress_to_rate_target(const ReflectanceField& field,
+                                     const CompressionOptions& options, const RateTarget& target,
+                                     const ContainerOptions& container,
+                                     const QuantizationBudget* quantization,
+                                     CompressionStats& stats) {
+  if ((target.bytes > 0) == (target.psnr > 0))
+    throw Error("a rate target is a byte count or a PSNR, exactly one of them");
+  if (target.psnr > 0 && !std::isfinite(target.psnr))
+    throw Error("the target PSNR must be a finite number of dB, got " +
+                std::to_string(target.psnr));
+  if (!target.region.empty() && target.region.size() != std::size_t(field.pixels()))
+    throw Error("the PSNR region has " + std::to_string(target.region.size()) +
+                " pixels, the field " + std::to_string(field.pixels()));
+  const unsigned threads = options.clustering.threads;
+  TargetSearch best;
+  std::optional<CurveChoice> best_choice;
+  nlohmann::ordered_json tried = nlohmann::ordered_json::array();
+  for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
+    CompressedField stored = grid.full;
+    std::optional<QuantizationChoice> quantized;
+    if (quantization) quantized = quantize_with_budget(field, stored, *quantization);
+    // The weight of each stored row's entries in the ranking.
+    std::vector<double> row_weight(stored.stored_rows(), 1.0);
+    for (std::size_t r = 0; r < row_weight.size(); ++r) {
+      if (target.bytes > 0) {
+        row_weight[r] = 1.0 / grid.energy[r];
+      } else if (!target.region.empty()) {
+        const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
+        row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
+      }
+    }
+    ContainerOptions planned = container;
+    if (target.parameters_json)
+      planned.parameters_json = target.parameters_json(grid.options, grid.stats);
+    RateCurve curve(field, stored, row_weight, planned, target, threads);
+    const CurveChoice choice =
+        target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
+    nlohmann::ordered_json points = nlohmann::ordered_json::array();
+    for (const RatePoint& point : curve.points()) points.push_back(to_json(point, target.psnr > 0));
+    tried.push_back({{"terms", grid.options.clustering.terms},
+                     {"clusters", stored.clusters},
+                     {"met", choice.met},
+                     {"choice", to_json(choice.point, target.psnr > 0)},
+                     {"points", points}});
+    if (!options.clustering.quiet)
+      std::fprintf(
+          stderr, "compress: rate target: %d terms, %d clusters -> %llu bytes, error %.5f%s%s\n",
+          grid.options.clustering.terms, stored.clusters,
+          static_cast<unsigned long long>(choice.point.bytes), choice.point.error,
+          target.psnr > 0 ? (", " + std::to_string(choice.point.psnr) + " dB").c_str() : "",
+          choice.met ? "" : " (target not met)");
+    if (!best_choice || better(choice, *best_choice, target)) {
+      best_choice = choice;
+      best.field = curve.at(choice.point.entries);
+      best.quantization = quantized;
+      best.options = grid.options;
+      stats = grid.stats;
+      stats.residual_nonzeros = best.field.residual.nonzeros();
+    }
+  });
+  nlohmann::ordered_json goal;
+  if (target.bytes > 0)
+    goal = {{"bytes", target.bytes}};
+  else
+    goal = {{"psnr_8bit", target.psnr},
+            {"white", target.psnr_white},
+            {"region", target.region.empty() ? "the field's mask" : "the given mask"}};
+  best.explanation = {
+      {"target", goal},
+      {"method",
+       target.bytes > 0
+           ? "each (terms, clusters) pair factored once with its full residual and stored as "
+             "asked; the residual entries ranked by e^2/||R[p,:]||^2 and the most kept whose "
+             "container fits (bisection); of the pairs that fit, the lowest Eq. 16 error wins"
+           : "each (terms, clusters) pair factored once with its full residual and stored as "
+             "asked; the residual entries inside the region ranked by e^2 and the fewest kept "
+             "whose 8-bit PSNR reaches the target (bisection); of the pairs that reach it, the "
+             "smallest container wins"},
+      {"met", best_choice && best_choice->met},
+      {"tried", tried},
+      {"chosen",
+       {{"terms", best.options.clustering.terms},
+        {"clusters", best.field.clusters},
+        {"point",
+         best_choice ? to_json(best_choice->point, target.psnr > 0) : nlohmann::ordered_json()}}}};
+  return best;
+}
+
+}  // namespace relume

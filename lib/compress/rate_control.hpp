@@ -1,0 +1,41 @@
+// `relume compress --target-bytes N | --target-bytes-per-pixel B | --target-psnr DB`: rate
+// control over the grid of --target-error (compression_target.hpp). Each (terms, clusters) pair
+// is factored once with its full residual and stored with the asked precision (quantized within
+// the budget by default). Its residual entries are ranked by the error each removes (Eq. 16's
+// e^2 / ||R[p,:]||^2 for a byte target; e^2 inside the PSNR region for a PSNR target), and the
+// number kept is found by bisection: the most entries whose container fits the bytes, or the
+// fewest whose 8-bit PSNR reaches the target. Of the pairs that meet the target, the lowest
+// error (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the
+// explanation says so. Every rate-distortion point tried is in the explanation.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "compress/compression_target.hpp"
+
+namespace relume {
+
+struct RateTarget {
+  std::uint64_t bytes = 0;  // > 0: the container may have at most this many bytes
+  double psnr = 0;          // > 0: the 8-bit PSNR in dB (model/field_psnr.hpp) to reach
+  double psnr_white = 1.0;  // the field value that is 255 for the PSNR
+  // width * height, non-zero where the PSNR is measured; empty: the field's mask.
+  std::vector<std::uint8_t> region;
+  // The parameter record the caller's container will carry (ContainerOptions::parameters_json)
+  // for a candidate's options and statistics, so that the bytes measured are the file's.
+  std::function<std::string(const CompressionOptions&, const CompressionStats&)> parameters_json;
+};
+
+// Exactly one of target.bytes and target.psnr must be > 0 (Error otherwise). `options` gives
+// everything but terms, clusters and the residual budget; with `quantization`, every candidate is
+// quantized within it before its residual is cut. `stats` receives the chosen run's statistics.
+TargetSearch compress_to_rate_target(const ReflectanceField& field,
+                                     const CompressionOptions& options, const RateTarget& target,
+                                     const ContainerOptions& container,
+                                     const QuantizationBudget* quantization,
+                                     CompressionStats& stats);
+
+}  // namespace relume

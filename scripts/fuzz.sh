@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/: clang, AddressSanitizer + UndefinedBehaviorSanitizer) in
+# ./build-fuzz and runs each for SECONDS seconds (default 60) on a copy of its seed corpus
+# (fuzz/corpus/<reader>/, kept small in the repository; what a run adds stays in build-fuzz/).
+# Any crash, sanitizer report, leak, exception other than relume::Error, allocation above 512 MB
+# or input slower than 10 s fails the script; the input is kept in build-fuzz/findings/.
+#   scripts/fuzz.sh [SECONDS]      build and run every target
+#   scripts/fuzz.sh --make-seeds   rewrite the binary seeds (containers, .npy) in fuzz/corpus/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds=60
+make_seeds=0
+case "${1:-}" in
+  --make-seeds) make_seeds=1 ;;
+  "") ;;
+  *) seconds="$1" ;;
+esac
+
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DRELUME_FUZZ=ON -DRELUME_BUILD_TESTS=OFF -DRELUME_BUILD_PYTHON=OFF >/dev/null
+cmake --build build-fuzz --target relume_fuzz_targets -j "$(nproc)"
+
+if [ "$make_seeds" -eq 1 ]; then
+  build-fuzz/fuzz/make_container_seeds fuzz/corpus
+  exit 0
+fi
+
+# target:corpus folder
+targets=(
+  fuzz_container:container
+  fuzz_container_repaired:container
+  fuzz_npy:npy
+  fuzz_light_files:light_files
+  fuzz_field_folder:field_folder
+  fuzz_environment_layout:environment_layout
+)
+mkdir -p build-fuzz/findings
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+failed=0
+for entry in "${targets[@]}"; do
+  target="${entry%%:*}"
+  corpus="build-fuzz/corpus/$target"
+  rm -rf "$corpus"
+  mkdir -p "$corpus"
+  cp "fuzz/corpus/${entry#*:}"/* "$corpus"/
+  echo "fuzz.sh: $target for ${seconds} s"
+  if ! build-fuzz/fuzz/"$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+      -malloc_limit_mb=512 -max_len=16384 -print_final_stats=1 \
+      -artifact_prefix="build-fuzz/findings/$target-" "$corpus" 2>"build-fuzz/$target.log"; then
+    tail -n 40 "build-fuzz/$target.log"
+    echo "fuzz.sh: $target FAILED (input in build-fuzz/findings/, log build-fuzz/$target.log)"
+    failed=1
+  else
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/$target.log" |
+      tr '\n' ' ' | sed "s/^/fuzz.sh: $target: /"
+    echo
+  fi
+done
+exit "$failed"

@@ -1,0 +1,157 @@
+// Fault tests of `relume compress` under SIGINT and SIGTERM, sent by the test to the running
+// command: during clustering (once its first checkpoint exists) and during the final write (the
+// moment the container's temporary file is created, seen with inotify). Each run must exit 128 +
+// the signal, leave no temporary file, and either a complete container or a valid checkpoint from
+// which --resume writes the same bytes as an uninterrupted run.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/inotify.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "core/atomic_file.hpp"
+#include "support/test_support.hpp"
+
+extern char** environ;
+
+namespace relume {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_relume;
+
+const std::vector<std::string> compress_options = {"--clusters",   "12", "--terms",    "3",
+                                                   "--iterations", "25", "--assign",   "cpu",
+                                                   "--threads",    "2",  "--residual", "3"};
+
+// Starts `relume compress scene -o out [--resume]` in `dir`, its output in dir/log.txt.
+pid_t start_compress(const testing::TempDir& dir, bool resume) {
+  std::vector<std::string> args = {RELUME_BINARY, "-q",
+                                   "compress",    (dir / "scene").string(),
+                                   "-o",          (dir / "out.relume").string()};
+  args.insert(args.end(), compress_options.begin(), compress_options.end());
+  if (resume) args.push_back("--resume");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  const std::string log = (dir / "log.txt").string();
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, RELUME_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+}
+
+std::vector<std::string> temporaries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().starts_with(".tmp-"))
+      names.push_back(entry.path().filename().string());
+  return names;
+}
+
+class CompressInterruption : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    reference_dir_ = new testing::TempDir;
+    const auto synth = run_relume("-q synth -o '" + (*reference_dir_ / "scene").string() +
+                                  "' --size 40x40 --lights 20 --samples 1");
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    std::string line;
+    for (const auto& o : compress_options) line += " " + o;
+    const auto run = run_relume("-q compress '" + (*reference_dir_ / "scene").string() + "' -o '" +
+                                (*reference_dir_ / "reference.relume").string() + "'" + line);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    reference_ = new std::string(read_file(*reference_dir_ / "reference.relume"));
+  }
+  static void TearDownTestSuite() {
+    delete reference_;
+    delete reference_dir_;
+  }
+
+  // A fresh folder with a copy of the scene.
+  void SetUp() override {
+    fs::copy(*reference_dir_ / "scene", dir_ / "scene", fs::copy_options::recursive);
+  }
+
+  // After an interrupted run: no temporary; a complete container equal to the reference, or
+  // none and a checkpoint that --resume completes into the reference.
+  void expect_nothing_half_written() {
+    EXPECT_THAT(temporaries(dir_.path()), ::testing::IsEmpty());
+    if (!fs::exists(dir_ / "out.relume")) {
+      ASSERT_TRUE(fs::exists(dir_ / "out.relume.checkpoint")) << read_file(dir_ / "log.txt");
+      EXPECT_EQ(wait_exit(start_compress(dir_, true)), 0) << read_file(dir_ / "log.txt");
+      EXPECT_FALSE(fs::exists(dir_ / "out.relume.checkpoint"));
+    }
+    EXPECT_TRUE(read_file(dir_ / "out.relume") == *reference_)
+        << "the resumed container differs from the uninterrupted run's";
+  }
+
+  void interrupt_during_clustering(int signal_number) {
+    const pid_t pid = start_compress(dir_, false);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(dir_ / "out.relume.checkpoint") &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(fs::exists(dir_ / "out.relume.checkpoint"));
+    kill(pid, signal_number);
+    EXPECT_EQ(wait_exit(pid), 128 + signal_number) << read_file(dir_ / "log.txt");
+    EXPECT_FALSE(fs::exists(dir_ / "out.relume")) << "the run ended before the signal";
+    expect_nothing_half_written();
+  }
+
+  void interrupt_during_final_write(int signal_number) {
+    const int watch = inotify_init1(IN_CLOEXEC);
+    ASSERT_GE(watch, 0);
+    inotify_add_watch(watch, dir_.path().c_str(), IN_CREATE);
+    const pid_t pid = start_compress(dir_, false);
+    const std::string container_temp = ".tmp-" + std::to_string(pid) + "-out.relume";
+    alignas(inotify_event) char buffer[4096];
+    for (bool seen = false; !seen;) {
+      const ssize_t n = read(watch, buffer, sizeof buffer);
+      ASSERT_GT(n, 0);
+      for (char* p = buffer; p < buffer + n;) {
+        const auto* event = reinterpret_cast<const inotify_event*>(p);
+        if (event->len > 0 && container_temp == event->name) seen = true;
+        p += sizeof(inotify_event) + event->len;
+      }
+    }
+    kill(pid, signal_number);
+    close(watch);
+    EXPECT_EQ(wait_exit(pid), 128 + signal_number) << read_file(dir_ / "log.txt");
+    std::printf("signal %d during the final write: %s\n", signal_number,
+                fs::exists(dir_ / "out.relume")
+                    ? "the write had completed (the container is kept)"
+                    : "the write was discarded (resumed from the checkpoint)");
+    expect_nothing_half_written();
+  }
+
+  testing::TempDir dir_;
+  static testing::TempDir* reference_dir_;
+  static std::string* reference_;
+};
+
+testing::TempDir* CompressInterruption::reference_dir_ = nullptr;
+std::string* CompressInterruption::reference_ = nullptr;
+
+TEST_F(CompressInterruption, SigintDuringClustering) { interrupt_during_clustering(SIGINT); }
+TEST_F(CompressInterruption, SigtermDuringClustering) { interrupt_during_clustering(SIGTERM); }
+TEST_F(CompressInterruption, SigintDuringTheFinalWrite) { interrupt_during_final_write(SIGINT); }
+TEST_F(CompressInterruption, SigtermDuringTheFinalWrite) { interrupt_during_final_write(SIGTERM); }
+
+}  // namespace
+}  // namespace relume

@@ -1,0 +1,111 @@
+// Tests of the container reader on crafted files whose sizes lie: a few hundred bytes that claim
+// 65536 x 65535 pixels (the mask's runs are valid, its size is not), a field at the pixel limit
+// under a small memory budget, a zero-length light direction, and a zstd section whose table
+// claims more than any frame of its size can decode to. Each is refused by name before anything
+// of the claimed size is allocated.
+#include <nlohmann/json.hpp>
+#include <relume/error.hpp>
+
+#include "container/container.hpp"
+#include "container/container_bytes.hpp"
+#include "container/container_format.hpp"
+#include "container/section_coding.hpp"
+#include "core/memory_budget.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+using testing::error_message;
+using ::testing::HasSubstr;
+
+// A container of `width` x `height` one-channel pixels, one light, nothing stored (an all-outside
+// mask): every section valid, written with the real frame code.
+std::string crafted_container(std::int64_t width, std::int64_t height, const float direction[3]) {
+  const nlohmann::json header = {{"width", width},
+                                 {"height", height},
+                                 {"channels", 1},
+                                 {"lights", 1},
+                                 {"terms", 0},
+                                 {"clusters", 0},
+                                 {"transform", "identity"},
+                                 {"stored_rows", 0},
+                                 {"residual_nonzeros", 0},
+                                 {"weights_precision", "float32"},
+                                 {"residual_precision", "float32"},
+                                 {"weight_step", 0},
+                                 {"residual_step", 0},
+                                 {"basis_bits", 0},
+                                 {"cluster_id_bits", 8},
+                                 {"residual_length_bits", 8},
+                                 {"light_index_bits", 8},
+                                 {"parameters", nlohmann::json::object()}};
+  ByteWriter lights;
+  for (int c = 0; c < 3; ++c) lights.f32(direction[c]);
+  for (int c = 0; c < 3; ++c) lights.f32(1.0f);
+  const std::uint64_t pixels = std::uint64_t(width * height);
+  // Run-length sets: one absent run over everything (no pixel inside, none dark).
+  ByteWriter mask, functions, dark_pixels;
+  for (ByteWriter* set : {&mask, &functions, &dark_pixels}) {
+    set->u8(1);
+    set->varint(pixels);
+  }
+  std::vector<StoredSection> sections;
+  for (std::string_view name : container_section_names(container_format_version)) {
+    StoredSection section{name, "", 1};
+    if (name == "header") section.raw = header.dump();
+    if (name == "lights") section.raw = lights.data();
+    if (name == "mask") section.raw = mask.data();
+    if (name == "functions") section.raw = functions.data();
+    if (name == "dark_pixels") section.raw = dark_pixels.data();
+    sections.push_back(section);
+  }
+  return assemble_container(sections, /*entropy_coding=*/false, nullptr);
+}
+
+const float up[3] = {0, 1, 0};
+
+TEST(HostileContainer, TheCraftedFileIsValidAtASaneSize) {
+  const CompressedField field = decode_container(crafted_container(7, 5, up), "small.relume");
+  EXPECT_EQ(field.mask.size(), 35u);
+  EXPECT_EQ(field.stored_rows(), 0u);
+}
+
+TEST(HostileContainer, PixelCountsBeyondTheLimitAreRefusedBeforeAllocating) {
+  const std::string bytes = crafted_container(65536, 65535, up);
+  EXPECT_LT(bytes.size(), 2048u);
+  EXPECT_THAT(error_message([&] { decode_container(bytes, "huge.relume"); }),
+              HasSubstr("huge.relume: section 'header': 65536x65535 pixels is more than the "
+                        "1073741824 a container may hold"));
+}
+
+TEST(HostileContainer, DecodingBeyondTheMemoryBudgetIsRefusedWithTheNumbers) {
+  const std::string bytes = crafted_container(32768, 32768, up);
+  set_memory_limit(64 << 20);
+  const std::string message = error_message([&] { decode_container(bytes, "big.relume"); });
+  set_memory_limit(0);
+  EXPECT_THAT(message, HasSubstr("reading big.relume (32768x32768 pixels) needs about"));
+  EXPECT_THAT(message, HasSubstr("more than the 64.0 MB available (--memory-limit)"));
+}
+
+TEST(HostileContainer, ZeroLengthLightDirectionsAreRefused) {
+  const float zero[3] = {0, 0, 0};
+  EXPECT_THAT(error_message([&] { decode_container(crafted_container(3, 2, zero), "z.relume"); }),
+              HasSubstr("z.relume: section 'lights': the direction of light 0 has zero length"));
+}
+
+TEST(HostileContainer, ZstdSectionsCannotClaimMoreThanAFrameDecodesTo) {
+  const SectionCoding zstd{true, SectionFilter::none, 1};
+  EXPECT_THAT(error_message([&] {
+                decode_section(std::string(100, 'x'), zstd, 100ull * 32768 + 1, "f: section 'w'");
+              }),
+              HasSubstr("f: section 'w': 100 zstd-coded bytes cannot decode to 3276801 bytes"));
+  // A real frame at a high ratio still decodes.
+  const std::string zeros(1 << 20, '\0');
+  const CodedSection coded = code_section(zeros, 1);
+  ASSERT_TRUE(coded.coding.zstd);
+  EXPECT_EQ(decode_section(coded.bytes, coded.coding, zeros.size(), "zeros"), zeros);
+}
+
+}  // namespace
+}  // namespace relume
