@@ -47,6 +47,8 @@ struct CompressArguments {
   std::string solver = "irls";
   std::string transform = "identity";
   std::string assign = "opencl";
+  std::string method = "l1";
+  std::string pca_centering = "none";
   std::string device;
   std::string weights_precision = "quantized";
   std::string residual_precision = "quantized";
@@ -327,6 +329,8 @@ std::vector<fs::path> output_paths(const CompressArguments& arguments) {
 
 void run_compress(CompressArguments& arguments) {
   CompressionOptions options = arguments.options;
+  options.method = parse_compression_method(arguments.method);
+  options.pca.centering = parse_pca_centering(arguments.pca_centering);
   options.residual = parse_residual_budget(arguments.residual);
   options.residual_allocation = parse_residual_allocation(arguments.residual_allocation);
   if (arguments.transform == "haar")
@@ -355,12 +359,16 @@ void run_compress(CompressArguments& arguments) {
   const std::vector<fs::path> outputs = output_paths(arguments);
 
   std::unique_ptr<OpenClAssigner> opencl;
-  if (arguments.assign == "opencl")
-    opencl = make_opencl_assigner(arguments.device, options.clustering);
-  else if (arguments.assign != "cpu")
+  if (arguments.assign != "opencl" && arguments.assign != "cpu")
     throw Error("--assign must be 'cpu' or 'opencl', got '" + arguments.assign + "'");
-  note("compress: reassignment fits on %s",
-       opencl ? opencl->device_label().c_str() : "the CPU (C++ path)");
+  if (options.method == CompressionMethod::cpca) {
+    note("compress: clustered PCA (least-squares fits on the CPU)");
+  } else {
+    if (arguments.assign == "opencl")
+      opencl = make_opencl_assigner(arguments.device, options.clustering);
+    note("compress: reassignment fits on %s",
+         opencl ? opencl->device_label().c_str() : "the CPU (C++ path)");
+  }
 
   const bool several = arguments.inputs.size() > 1;
   if (several) fs::create_directories(arguments.output);
@@ -407,6 +415,29 @@ const CommandRegistration registration{
                        "Output .relume file; with several inputs, a folder that receives one "
                        "<input name>.relume per input")
           ->required();
+      command->add_option("--method", arguments->method,
+                          "l1: the paper's clustered sparse residual factorization (default); "
+                          "cpca: clustered PCA (Sloan et al. 2003), the baseline, into the same "
+                          "container (--pca-center, --pca-iterations)");
+      command->add_option("--pca-center", arguments->pca_centering,
+                          "cpca: none (default: --terms components per cluster, the stronger "
+                          "at equal bytes) or mean (a mean plus --terms - 1 components, stored "
+                          "as their span: Sloan et al.'s mean + t components is --pca-center "
+                          "mean --terms t+1)");
+      command
+          ->add_option("--pca-iterations", options.pca.iterations,
+                       "cpca: cap on fit + reassignment rounds (they stop once settled)")
+          ->capture_default_str();
+      command->add_option(
+          "--trimmed-refit", options.trimmed_refit_rounds,
+          "Rounds of least trimmed squares refit for the --residual budget after the clustering "
+          "(-1: none): lowers the error with that many residual entries (it may raise it at "
+          "shorter caps of the dynamic residual), e.g. --residual 0 --trimmed-refit 2");
+      command->add_flag(
+          "--refit-chooses-clusters", options.refit_chooses_clusters,
+          "With --trimmed-refit: also cluster by the other method (cpca for l1, l1 for cpca) and "
+          "choose per cluster between the two before the refit (slower; never worse than either "
+          "at the budget)");
       command->add_option("--clusters", clustering.clusters, "Clusters K")->capture_default_str();
       command->add_option("--terms", clustering.terms, "Basis functions per cluster t (1 to 16)")
           ->capture_default_str();

@@ -8,11 +8,13 @@
 namespace relume {
 
 std::vector<float> least_squares_subspace(const WorkingRows& rows,
-                                          const std::vector<std::uint32_t>& members, int terms) {
+                                          const std::vector<std::uint32_t>& members, int terms,
+                                          const float* center) {
   const int lights = rows.lights();
   RowMatrixF gathered(static_cast<Eigen::Index>(members.size()), lights);
   for (std::size_t k = 0; k < members.size(); ++k)
     gathered.row(static_cast<Eigen::Index>(k)) = rows.values.row(members[k]);
+  if (center) gathered.rowwise() -= Eigen::Map<const Eigen::RowVectorXf>(center, lights);
   const Eigen::MatrixXd gram = (gathered.transpose() * gathered).cast<double>();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
   // Eigenvalues ascend: the last `terms` eigenvectors span the best subspace; with fewer members

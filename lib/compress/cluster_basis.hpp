@@ -14,10 +14,12 @@
 namespace relume {
 
 // The `terms` leading right singular vectors of the rows `members` of `rows` (t x m, row-major,
-// orthonormal rows), from the eigenvectors of their Gram matrix. With fewer members than terms
-// the missing directions are filled with other orthonormal vectors.
+// orthonormal rows), from the eigenvectors of their Gram matrix; with `center` (m values) those
+// of the rows minus `center` (the principal components about a mean). With fewer members than
+// terms the missing directions are filled with other orthonormal vectors.
 std::vector<float> least_squares_subspace(const WorkingRows& rows,
-                                          const std::vector<std::uint32_t>& members, int terms);
+                                          const std::vector<std::uint32_t>& members, int terms,
+                                          const float* center = nullptr);
 
 // An m x t matrix whose columns are an orthonormal basis of the span of F's rows (zero columns
 // where F is rank-deficient).

@@ -161,8 +161,8 @@ void iterate_clusters(const WorkingRows& rows, ClusterModel& model,
   if (options.exact_refit) refit_exactly(rows, model, options, trace);
 }
 
-ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& options,
-                          ClusteringTrace& trace, const IterationHook& hook) {
+ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions& options,
+                               ClusteringTrace& trace) {
   const auto start = Clock::now();
   SeedingOptions seeding;
   seeding.clusters = options.clusters;
@@ -173,6 +173,12 @@ ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& opti
   seeding.threads = options.threads;
   ClusterModel model = seed_clusters(rows, seeding);
   trace.seeding_seconds += seconds_since(start);
+  return model;
+}
+
+ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& options,
+                          ClusteringTrace& trace, const IterationHook& hook) {
+  ClusterModel model = seed_clusters_for(rows, options, trace);
   iterate_clusters(rows, model, options, options.max_iterations, trace, hook);
   return model;
 }

@@ -66,7 +66,12 @@ struct ClusteringTrace {
 // Called after every iteration with the model (bases, assignment, weights all consistent).
 using IterationHook = std::function<void(const ClusterModel& model, const IterationRecord&)>;
 
-// Seeds clusters (lib/compress/cluster_seeding.hpp) and runs the iterations.
+// Seeds clusters with the seeding settings of `options` (lib/compress/cluster_seeding.hpp),
+// adding the time to trace.seeding_seconds.
+ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions& options,
+                               ClusteringTrace& trace);
+
+// Seeds clusters (seed_clusters_for) and runs the iterations.
 ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& options,
                           ClusteringTrace& trace, const IterationHook& hook = {});
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <relume/error.hpp>
 
 #include "compress/peak_residual_allocation.hpp"
@@ -48,6 +49,59 @@ void validate_compression_options(const CompressionOptions& options) {
                 std::to_string(options.noise_floor));
   validate_size_limits(clustering.sizes, clustering.terms);
   resolve_thread_count(clustering.threads);
+  if (options.method == CompressionMethod::cpca &&
+      (options.multires_levels > 0 || clustering.exact_refit))
+    throw Error(
+        "clustered PCA (--method cpca) has no multi-resolution start and no exact L1 "
+        "refit; leave --multires and --solver at their defaults");
+  if (options.refit_chooses_clusters && options.trimmed_refit_rounds < 0)
+    throw Error("choosing clusters for the refit needs the trimmed refit (--trimmed-refit N)");
+}
+
+namespace {
+
+// The trimmed least-squares refit for the residual budget, after choosing per cluster between
+// the method's clustering and the other method's when asked.
+void refit_for_budget(const WorkingRows& rows, const CompressionOptions& options,
+                      CompressionStats& stats, ClusterModel& model) {
+  const ClusteringOptions& clustering = options.clustering;
+  const TrimmedRefitOptions refit =
+      trimmed_refit_options(clustering, stats.residual_entries, options.trimmed_refit_rounds);
+  TrimmedRefitTrace& trace = stats.trimmed_refit.emplace();
+  if (options.refit_chooses_clusters) {
+    ClusteringTrace other_trace;
+    const ClusterModel other = options.method == CompressionMethod::cpca
+                                   ? cluster_rows(rows, clustering, other_trace)
+                                   : cluster_rows_pca(rows, clustering, options.pca, other_trace);
+    const std::vector<double> own = trimmed_errors(rows, model, refit.entries, refit.threads);
+    trace.objective_before_choice = std::accumulate(own.begin(), own.end(), 0.0);
+    double chosen = 0;
+    model = choose_clusters(rows, model, other, refit, chosen);
+  }
+  refit_trimmed_least_squares(rows, model, refit, trace);
+}
+
+}  // namespace
+
+TrimmedRefitOptions trimmed_refit_options(const ClusteringOptions& clustering, int entries,
+                                          int rounds) {
+  TrimmedRefitOptions refit;
+  refit.entries = entries;
+  refit.rounds = rounds;
+  refit.candidates = clustering.candidates;
+  refit.threads = clustering.threads;
+  refit.quiet = clustering.quiet;
+  return refit;
+}
+
+CompressionMethod parse_compression_method(const std::string& text) {
+  if (text == "l1") return CompressionMethod::l1;
+  if (text == "cpca") return CompressionMethod::cpca;
+  throw Error("compression method must be 'l1' or 'cpca', got '" + text + "'");
+}
+
+std::string to_string(CompressionMethod method) {
+  return method == CompressionMethod::cpca ? "cpca" : "l1";
 }
 
 CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
@@ -156,6 +210,8 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   if (prepared.functions.empty()) {
     model.terms = clustering.terms;
     model.lights = field.lights();
+  } else if (resume && options.method == CompressionMethod::cpca) {
+    throw Error("clustered PCA (--method cpca) writes no checkpoints and cannot resume one");
   } else if (resume) {
     model = resume->model;
     if (model.terms != clustering.terms || model.lights != field.lights() ||
@@ -184,14 +240,19 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
                            clustering, *stats.multires);
     iterate_clusters(prepared.rows, model, clustering, options.refine_iterations, stats.clustering,
                      hook);
+  } else if (options.method == CompressionMethod::cpca) {
+    model = cluster_rows_pca(prepared.rows, clustering, options.pca, stats.clustering);
   } else {
     model = cluster_rows(prepared.rows, clustering, stats.clustering, hook);
   }
+  stats.residual_entries = options.residual.entries_for(field.lights());
+  if (options.trimmed_refit_rounds >= 0 && !prepared.functions.empty() &&
+      stats.residual_entries + model.terms < model.lights)
+    refit_for_budget(prepared.rows, options, stats, model);
   stats.clusters = model.clusters;
   stats.clustering_seconds = seconds_since(start);
 
   start = Clock::now();
-  stats.residual_entries = options.residual.entries_for(field.lights());
   const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
   // By peak, a function may take up to peak_allocation_row_cap times the average budget.
   const int row_cap =

@@ -4,22 +4,42 @@
 // function) are optionally moved into the Haar basis (paper Eq. 3), scaled to unit norm, clustered
 // by L1 factorization (lib/compress/cluster_iterations.hpp, optionally multi-resolution), and their
 // residual is cut to the largest entries (lib/compress/residual_selection.hpp). The result is a
-// CompressedField.
+// CompressedField. CompressionMethod::cpca clusters by clustered PCA instead
+// (lib/compress/clustered_pca.hpp); a trimmed least-squares refit for the residual budget
+// (lib/compress/trimmed_refit.hpp) may follow either clustering.
 #pragma once
 
 #include <optional>
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
+#include <string>
 #include <vector>
 
 #include "compress/cluster_iterations.hpp"
+#include "compress/clustered_pca.hpp"
 #include "compress/multires_clustering.hpp"
 #include "compress/residual_selection.hpp"
+#include "compress/trimmed_refit.hpp"
 
 namespace relume {
 
+// How the clusters are found: the paper's L1 factorization, or clustered PCA (the baseline).
+enum class CompressionMethod : std::uint8_t { l1, cpca };
+
+// "l1" or "cpca"; throws Error naming the bad text.
+CompressionMethod parse_compression_method(const std::string& text);
+std::string to_string(CompressionMethod method);
+
 struct CompressionOptions {
+  CompressionMethod method = CompressionMethod::l1;
   ClusteringOptions clustering;
+  ClusteredPcaOptions pca;  // for CompressionMethod::cpca
+  // Rounds of the trimmed least-squares refit for the residual budget after the clustering;
+  // < 0: none. Skipped when the budget keeps nearly every entry (entries + terms >= lights).
+  int trimmed_refit_rounds = -1;
+  // Before the refit, also cluster by the other method (L1 or clustered PCA) and choose per
+  // cluster between the two clusterings (choose_clusters).
+  bool refit_chooses_clusters = false;
   ResidualBudget residual;  // entries kept per function (on average with allocation `peak`)
   ResidualAllocation residual_allocation = ResidualAllocation::per_function;
   // Field units. The noise floor: pixels whose every channel has an RMS at or below it go to the
@@ -31,6 +51,11 @@ struct CompressionOptions {
   int multires_levels = 0;    // cluster a field downsampled this many times first
   int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering
 };
+
+// The trimmed refit's settings for `entries` residual entries and `rounds` rounds, with the
+// candidates, threads and quiet of `clustering` (compress and eval refit alike).
+TrimmedRefitOptions trimmed_refit_options(const ClusteringOptions& clustering, int entries,
+                                          int rounds);
 
 // A clustering to continue from (a checkpoint): the model and the iterations already done.
 struct ClusteringResume {
@@ -56,6 +81,7 @@ struct CompressionStats {
   double prepare_seconds = 0, clustering_seconds = 0, residual_seconds = 0;
   ClusteringTrace clustering;
   std::optional<MultiresTrace> multires;
+  std::optional<TrimmedRefitTrace> trimmed_refit;
   // Fraction of the full residual's entries with |e| <= threshold * ||R[p,:]||_2.
   std::vector<double> sparseness;
 };

@@ -89,7 +89,8 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
                                               const CompressionStats& stats,
                                               const std::string& solver) {
   const ClusteringOptions& clustering = options.clustering;
-  return {{"clusters_asked", clustering.clusters},
+  return {{"method", to_string(options.method)},
+          {"clusters_asked", clustering.clusters},
           {"clusters", stats.clusters},
           {"terms", clustering.terms},
           {"residual", options.residual.describe()},
@@ -105,7 +106,11 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
           {"candidates", clustering.candidates},
           {"min_cluster_size", clustering.sizes.minimum_for(clustering.terms)},
           {"max_cluster_size", clustering.sizes.maximum},
-          {"seed", clustering.seed}};
+          {"seed", clustering.seed},
+          {"pca_centering", to_string(options.pca.centering)},  // cpca, and the refit's choice
+          {"pca_iterations", options.pca.iterations},
+          {"trimmed_refit_rounds", options.trimmed_refit_rounds},
+          {"refit_chooses_clusters", options.refit_chooses_clusters}};
 }
 
 nlohmann::ordered_json compression_report(const CompressionRun& run) {
@@ -193,6 +198,19 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
                           {"low_clustering", clustering_json(multires.low)},
                           {"full_assignment_seconds", multires.assignment_seconds},
                           {"mean_pool_size", multires.mean_pool_size}};
+  }
+  if (stats.trimmed_refit) {
+    const TrimmedRefitTrace& refit = *stats.trimmed_refit;
+    report["trimmed_refit"] = {
+        {"entries", stats.residual_entries},
+        {"objective_before_choice", refit.objective_before_choice
+                                        ? nlohmann::ordered_json(*refit.objective_before_choice)
+                                        : nlohmann::ordered_json()},
+        {"objective_before", refit.objective_before},
+        {"objective_after", refit.objective_after},
+        {"rows_changed", refit.changed},
+        {"clusters_removed", refit.clusters_removed},
+        {"seconds", refit.seconds}};
   }
   return report;
 }

@@ -1,0 +1,50 @@
+// The relighting side of `relume eval` (paper Table 1): frames per second and the relit error per
+// residual cap of the OpenCL relighter, on the fields as their containers store them, under an
+// environment map turned through a few rotations; and the relit images of one cap.
+#pragma once
+
+#include <relume/compressed_field.hpp>
+#include <relume/image.hpp>
+#include <relume/lighting.hpp>
+#include <string>
+#include <vector>
+
+namespace relume {
+
+struct RelightingSetup {
+  const ReflectanceField* original = nullptr;
+  const EnvironmentMap* map = nullptr;
+  double rotate_degrees = 0;  // of the first frame; the others turn on by 360 / frames
+  int frames = 8;
+  int timed_calls = 24;   // relight() calls timed per cap, cycling through the frames
+  std::vector<int> caps;  // residual entries used per row
+  int image_cap = 0;      // the cap whose first frame is kept as the relit image
+  std::string device;     // OpenCL device (RelighterOptions::device)
+  unsigned threads = 0;
+};
+
+struct RelightingRow {
+  std::string method;
+  int cap = 0;
+  double frames_per_second = 0;  // 1 / median wall time of one relight() call (with readback)
+  double kernel_ms = 0;          // median device time of its kernels
+  double relit_error = 0;  // relative squared error against the uncompressed field relit, mean
+                           // over the frames
+};
+
+struct RelightingResult {
+  std::string device;
+  std::vector<RelightingRow> rows;
+  Image reference;                                    // the first frame, uncompressed
+  std::vector<std::pair<std::string, Image>> images;  // per method, image_cap, first frame
+};
+
+// `fields`: (method name, stored field) pairs. Throws Error when no OpenCL device matches.
+RelightingResult measure_relighting(
+    const std::vector<std::pair<std::string, const CompressedField*>>& fields,
+    const RelightingSetup& setup);
+
+// |image - reference| x scale, per value.
+Image scaled_difference(const Image& image, const Image& reference, float scale);
+
+}  // namespace relume
