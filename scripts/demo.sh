@@ -17,7 +17,7 @@ out=out/demo
 mkdir -p "$out"
 $relume synth -o "$out/scene" --size 320x320 --lights 253
 $relume sky -o "$out/sky.exr"
-$relume compress "$out/scene" -o "$out/scene.relume" --clusters 64 --terms 4 --residual 12 \
+$relume compress "$out/scene" -o "$out/scene.relume" --clusters 64 --terms 8 --residual 7 \
   --report "$out/report.json"
 $relume info "$out/scene.relume"
 for image in reference.exr reference.png; do
