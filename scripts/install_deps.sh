@@ -10,7 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev python3-numpy python3-openimageio
   pybind11-dev python3-dev python3-pytest python3-matplotlib
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev locales-all
 )
 
 missing=()
