@@ -29,7 +29,8 @@ if what == "compress":
                    iterations=12)
     run = lambda **extra: relume.compress(field, **options, **extra)
 else:
-    matrix = np.random.default_rng(1).standard_normal((120, 24))
+    matrix = np.random.default_rng(1).standard_normal((480, 24))  # ~1 s: well above the
+    # tens of milliseconds a signal takes to arrive from the other thread
     run = lambda **extra: relume.factor(matrix, 4, solver="lp", max_iterations=30,
                                         tolerance=0, threads=2, **extra)
 
