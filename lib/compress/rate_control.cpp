@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <relume/error.hpp>
 #include <utility>
 
@@ -53,7 +54,9 @@ class RateCurve {
     return field;
   }
 
+  // Each count is encoded and reconstructed once: the bisections ask for their ends again.
   RatePoint measure(std::size_t entries) {
+    if (const auto known = measured_.find(entries); known != measured_.end()) return known->second;
     const CompressedField field = at(entries);
     RatePoint point;
     point.entries = field.residual.nonzeros();
@@ -64,6 +67,7 @@ class RateCurve {
                              target_.region)
                        .masked;
     points_.push_back(point);
+    measured_.emplace(entries, point);
     return point;
   }
 
@@ -77,6 +81,7 @@ class RateCurve {
   const RateTarget& target_;
   unsigned threads_;
   std::vector<RatePoint> points_;
+  std::map<std::size_t, RatePoint> measured_;  // by the count asked for
 };
 
 // Given !good(lo) and good(hi) for a monotone good(n): the last n known not good and the first
