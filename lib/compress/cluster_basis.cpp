@@ -1,30 +1,27 @@
 // Implementation of cluster basis fitting (see cluster_basis.hpp).
 #include "compress/cluster_basis.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "compress/leading_subspace.hpp"
 
 namespace relume {
 
 std::vector<float> least_squares_subspace(const WorkingRows& rows,
                                           const std::vector<std::uint32_t>& members, int terms,
-                                          const float* center) {
+                                          const float* center, const float* warm_start) {
   const int lights = rows.lights();
   RowMatrixF gathered(static_cast<Eigen::Index>(members.size()), lights);
   for (std::size_t k = 0; k < members.size(); ++k)
     gathered.row(static_cast<Eigen::Index>(k)) = rows.values.row(members[k]);
   if (center) gathered.rowwise() -= Eigen::Map<const Eigen::RowVectorXf>(center, lights);
-  const Eigen::MatrixXd gram = (gathered.transpose() * gathered).cast<double>();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
-  // Eigenvalues ascend: the last `terms` eigenvectors span the best subspace; with fewer members
-  // than terms the remaining (zero-eigenvalue) eigenvectors still complete an orthonormal set.
+  const Eigen::MatrixXd subspace =
+      leading_right_singular_vectors(gathered, terms, SubspaceMethod::automatic, warm_start);
   std::vector<float> basis(std::size_t(terms) * lights);
-  for (int j = 0; j < terms; ++j) {
-    const Eigen::Index column = lights - 1 - j;
+  for (int j = 0; j < terms; ++j)
     for (int i = 0; i < lights; ++i)
-      basis[std::size_t(j) * lights + i] = static_cast<float>(eigen.eigenvectors()(i, column));
-  }
+      basis[std::size_t(j) * lights + i] = static_cast<float>(subspace(j, i));
   return basis;
 }
 

@@ -14,12 +14,14 @@
 namespace relume {
 
 // The `terms` leading right singular vectors of the rows `members` of `rows` (t x m, row-major,
-// orthonormal rows), from the eigenvectors of their Gram matrix; with `center` (m values) those
-// of the rows minus `center` (the principal components about a mean). With fewer members than
-// terms the missing directions are filled with other orthonormal vectors.
+// orthonormal rows), at a cost linear in members x lights (leading_subspace.hpp); with `center`
+// (m values) those of the rows minus `center` (the principal components about a mean). With fewer
+// members than terms the missing directions are filled with other orthonormal vectors.
+// `warm_start` (t x m) is a guess that speeds it up (see leading_right_singular_vectors).
 std::vector<float> least_squares_subspace(const WorkingRows& rows,
                                           const std::vector<std::uint32_t>& members, int terms,
-                                          const float* center = nullptr);
+                                          const float* center = nullptr,
+                                          const float* warm_start = nullptr);
 
 // An m x t matrix whose columns are an orthonormal basis of the span of F's rows (zero columns
 // where F is rank-deficient).

@@ -103,8 +103,10 @@ ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& option
     const auto members = model.members();
     parallel_for(std::size_t(model.clusters), options.threads, [&](std::size_t k, unsigned) {
       if (members[k].empty()) return;  // kept as it is; the size rules remove it later
-      const std::vector<float> basis = least_squares_subspace(rows, members[k], options.terms);
-      std::copy(basis.begin(), basis.end(), model.basis(static_cast<int>(k)));
+      float* current = model.basis(static_cast<int>(k));
+      const std::vector<float> basis =
+          least_squares_subspace(rows, members[k], options.terms, nullptr, current);
+      std::copy(basis.begin(), basis.end(), current);
     });
   }
   return model;

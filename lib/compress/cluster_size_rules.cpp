@@ -1,13 +1,13 @@
 // Implementation of the cluster size rules (see cluster_size_rules.hpp).
 #include "compress/cluster_size_rules.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <numeric>
 #include <relume/error.hpp>
 
 #include "compress/cluster_assignment.hpp"
 #include "compress/cluster_basis.hpp"
+#include "compress/leading_subspace.hpp"
 #include "core/parallel.hpp"
 
 namespace relume {
@@ -74,9 +74,8 @@ std::vector<std::uint32_t> split_off_half(const WorkingRows& rows, const Cluster
     const auto x = rows.values.row(members[p]);
     leftover.row(static_cast<Eigen::Index>(p)) = x - (x * q) * q.transpose();
   }
-  const Eigen::MatrixXd gram = (leftover.transpose() * leftover).cast<double>();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
-  const Eigen::VectorXf direction = eigen.eigenvectors().col(model.lights - 1).cast<float>();
+  const Eigen::VectorXf direction =
+      leading_right_singular_vectors(leftover, 1).row(0).transpose().cast<float>();
   const Eigen::VectorXf score = leftover * direction;
   std::vector<std::size_t> order(members.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
