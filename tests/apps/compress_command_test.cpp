@@ -162,8 +162,11 @@ TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostRepor
   EXPECT_EQ(cost["weights"], "float16");
   EXPECT_EQ(cost["residual_values"], "float16");
   EXPECT_EQ(cost["error_masked_stored"].get<double>(), report["error_masked"].get<double>());
-  // Half precision keeps about 3 decimal digits: the float32 factorization is more accurate.
-  EXPECT_LT(cost["error_masked_float32"].get<double>(), stored_error);
+  // Half precision keeps about 3 decimal digits: its rounding moves the stored field's error by
+  // a little (either way: the rounding is not aligned with the fit's own error), and the stored
+  // field differs from the float32 one by quantization_error.
+  EXPECT_NE(cost["error_masked_float32"].get<double>(), stored_error);
+  EXPECT_NEAR(cost["error_masked_float32"].get<double>(), stored_error, 0.01 * stored_error);
   EXPECT_GT(cost["quantization_error"].get<double>(), 1e-9);
   EXPECT_LT(cost["quantization_error"].get<double>(), 1e-5);
 }
