@@ -93,25 +93,22 @@ ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& option
     }
   }
 
-  // Least-squares k-subspace rounds on the sample (it stands for the field, so their cost does
-  // not grow with it), then one assignment of every row.
+  // Least-squares k-subspace rounds over all rows.
   CandidateOptions nearest;
   nearest.count = 1;
-  for (int round = 0; round < options.l2_rounds; ++round) {
-    const CandidateLists best =
-        nearest_subspace_candidates(sample, model, nearest, options.threads);
+  for (int round = 0; round <= options.l2_rounds; ++round) {
+    const CandidateLists best = nearest_subspace_candidates(rows, model, nearest, options.threads);
     model.assignment.assign(best.clusters.begin(), best.clusters.end());
+    if (round == options.l2_rounds) break;
     const auto members = model.members();
     parallel_for(std::size_t(model.clusters), options.threads, [&](std::size_t k, unsigned) {
       if (members[k].empty()) return;  // kept as it is; the size rules remove it later
       float* current = model.basis(static_cast<int>(k));
       const std::vector<float> basis =
-          least_squares_subspace(sample, members[k], options.terms, nullptr, current);
+          least_squares_subspace(rows, members[k], options.terms, nullptr, current);
       std::copy(basis.begin(), basis.end(), current);
     });
   }
-  const CandidateLists best = nearest_subspace_candidates(rows, model, nearest, options.threads);
-  model.assignment.assign(best.clusters.begin(), best.clusters.end());
   return model;
 }
 

@@ -3,8 +3,7 @@
 // sample of rows, each new seed is drawn with probability proportional to its squared distance
 // from the subspaces chosen so far, and its subspace is grown from the rows most similar to it
 // (the 2t largest |cosines|, then the rows closest to their least-squares subspace). A few cheap
-// least-squares rounds on the sample (assign to the nearest subspace, refit each subspace) and one
-// assignment of all rows follow.
+// least-squares rounds over all rows (assign to the nearest subspace, refit each subspace) follow.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +16,7 @@ struct SeedingOptions {
   int clusters = 64;
   int terms = 4;
   int sample_rows = 20000;  // rows the seeds are chosen from
-  int l2_rounds = 4;        // least-squares k-subspace rounds on the sample
+  int l2_rounds = 4;        // least-squares k-subspace rounds over all rows
   std::uint64_t seed = 1;
   unsigned threads = 0;
 };

@@ -89,7 +89,7 @@ Eigen::MatrixXd by_subspace_iteration(const RowMatrixF& X, int terms, const floa
     // Rayleigh quotient Q^T X^T X Q: its leading eigenvalues are the captured energy.
     const Eigen::MatrixXd rayleigh = (XQ.transpose() * XQ).cast<double>();
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(rayleigh);
-    const double energy = ritz.eigenvalues().tail(terms).sum();
+    const double energy = ritz.eigenvalues().tail(std::min<Eigen::Index>(terms, block)).sum();
     const bool converged = previous >= 0 && energy - previous <= energy_tolerance * energy;
     if (converged || iteration + 1 == max_iterations) {
       const Eigen::MatrixXd U = leading_eigenvectors(rayleigh, terms);
