@@ -467,7 +467,7 @@ void run_eval(EvalArguments& arguments) {
       nlohmann::ordered_json entry = {{"clusters", clusters}, {"terms", terms}};
       for (const int entries : {0, arguments.compare_entries}) {
         nlohmann::ordered_json at = nlohmann::ordered_json::object();
-        for (const std::string& method : {"l1", "cpca", "cpca-mean"})
+        for (const std::string method : {"l1", "cpca", "cpca-mean"})
           if (const auto e =
                   error_at(find_run(measured, method, clusters, terms), entries, classes))
             at[method] = *e;

@@ -44,7 +44,8 @@ StoredValues store_values(const std::vector<float>& values, float step) {
   StoredValues stored;
   if (step <= 0) {
     stored.data.resize(values.size() * 4);
-    std::memcpy(stored.data.data(), values.data(), stored.data.size());
+    if (!values.empty())  // memcpy of a null pointer is undefined even for 0 bytes
+      std::memcpy(stored.data.data(), values.data(), stored.data.size());
     return stored;
   }
   std::vector<std::int32_t> integers(values.size());
