@@ -59,9 +59,10 @@ void relight_container(const RelightOptions& options) {
     mask = read_mask(options.field_input.mask_file, field.width, field.height);
     black_outside(image, mask);
   }
-  detail("relight: %s, residual cap %s, kernels %.2f ms", renderer.device_name().c_str(),
-         cap == full_residual ? "all" : std::to_string(cap).c_str(),
-         1e3 * renderer.last_kernel_seconds());
+  detail("relight: %s, residual cap %s, kernels %.2f ms, %llu negative values set to 0",
+         renderer.device_name().c_str(), cap == full_residual ? "all" : std::to_string(cap).c_str(),
+         1e3 * renderer.last_kernel_seconds(),
+         static_cast<unsigned long long>(renderer.last_projected_values()));
   write_image(options.output, image,
               resolve_image_output(options.output, options.image_output, image, mask));
 }

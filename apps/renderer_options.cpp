@@ -18,6 +18,10 @@ void add_renderer_options(CLI::App& command, RendererOptions& options) {
                   "Residual entries used per function: 'all', a count N, or P% of the lights "
                   "(fewer is faster and less accurate)")
       ->capture_default_str();
+  command.add_flag("--allow-negative", options.relighter.allow_negative,
+                   "Keep negative relit values: by default a container of non-negative data relit "
+                   "under a non-negative light has its undershoot below zero set to 0 (the true "
+                   "image is >= 0 there); use this to see the raw reconstruction");
 }
 
 void check_renderer_options(const RendererOptions& options) {

@@ -51,6 +51,7 @@ RelightingResult measure_relighting(
   for (const auto& [method, field] : fields) {
     RelighterOptions options;
     options.device = setup.device;
+    options.allow_negative = true;  // each method's own reconstruction, not projected onto >= 0
     Relighter relighter(*field, options);
     result.device = relighter.device_name();
     relighter.relight(lights.front());  // warm-up: buffers and kernels

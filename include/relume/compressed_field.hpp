@@ -72,6 +72,10 @@ struct CompressedField {
   // relight as one shared function per channel, dark[c * lights + i] (in the transformed basis).
   std::vector<std::uint32_t> dark_pixels;  // ascending pixel indices, inside the mask
   std::vector<float> dark;                 // channels x lights, empty when no pixel is dark
+  // The field it was compressed from had no negative value (every capture does): a relit image
+  // under a non-negative light vector is then non-negative too, and Relighter projects the
+  // compressed field's undershoot below zero back to 0 (RelighterOptions::allow_negative).
+  bool non_negative = false;
 
   std::size_t stored_rows() const { return stored_function.size(); }
   std::int64_t functions() const { return std::int64_t(width) * height * channels; }

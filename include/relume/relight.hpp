@@ -10,6 +10,7 @@
 // largest entries only (the dynamic residual): faster and less accurate.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <relume/compressed_field.hpp>
@@ -56,6 +57,11 @@ struct RelighterOptions {
   // RELUME_DEVICE environment variable, else the first GPU, else PoCL's CPU device.
   std::string device;
   bool cpu_reference = false;  // relight with CompressedRelightReference instead of OpenCL
+  // Keep negative values of a relit image. By default, a field compressed from non-negative data
+  // (CompressedField::non_negative) relit under a light vector with no negative entry has its
+  // negative values (the fit's undershoot) set to 0: the true image is non-negative there, so
+  // this moves no value away from it. Signed light vectors are never projected.
+  bool allow_negative = false;
 };
 
 // Relights one compressed field many times. The OpenCL path uploads the field once (in the
@@ -77,6 +83,8 @@ class Relighter {
 
   // "platform / device" of the OpenCL device, or "CPU reference (C++)".
   std::string device_name() const;
+  // Negative values set to 0 in the last call's images (see RelighterOptions::allow_negative).
+  std::uint64_t last_projected_values() const;
   // Bytes and device seconds of the kernels of the last call (0 for the CPU reference).
   double last_kernel_bytes() const;
   double last_kernel_seconds() const;

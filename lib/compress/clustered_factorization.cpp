@@ -126,6 +126,7 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   out.stored_function = prepared.functions;
   out.dark_pixels = prepared.dark_pixels;
   out.dark = prepared.dark;
+  out.non_negative = (field.values.array() >= 0.0f).all();
   out.cluster.assign(model.assignment.begin(), model.assignment.end());
   out.bases = model.bases;
   out.weights.resize(static_cast<Eigen::Index>(rows), terms);

@@ -196,6 +196,11 @@ class ContainerDecoder {
       field.transform = BasisTransform::haar;
     else
       throw Error(at + ": 'transform' is \"" + transform + "\", expected \"identity\" or \"haar\"");
+    // v1 files and the first v2 files have no 'non_negative': not known to be non-negative.
+    if (const auto non_negative = header.find("non_negative"); non_negative != header.end()) {
+      if (!non_negative->is_boolean()) throw Error(at + ": 'non_negative' is not true or false");
+      field.non_negative = non_negative->get<bool>();
+    }
     check_dimensions(field, at);
     const std::uint64_t pixels = std::uint64_t(field.width) * std::uint64_t(field.height);
     if (pixels > max_container_pixels)

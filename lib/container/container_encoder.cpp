@@ -67,6 +67,7 @@ std::string encode_header(const CompressedField& field, const ContainerOptions& 
               {"terms", field.terms},
               {"clusters", field.clusters},
               {"transform", field.transform == BasisTransform::haar ? "haar" : "identity"},
+              {"non_negative", field.non_negative},
               {"stored_rows", field.stored_rows()},
               {"residual_nonzeros", field.residual.nonzeros()},
               {"weights_precision", to_string(stored_weight_precision(field, options))},
