@@ -1,4 +1,6 @@
-// OpenImageIO-backed implementation of read_image / write_image.
+// OpenImageIO-backed implementation of read_image / write_image, and of encode_image_bytes
+// (image/image_bytes.hpp), which encodes the same way into memory.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/memory_budget.hpp"
+#include "image/image_bytes.hpp"
 #include "image/image_encoding.hpp"
 
 namespace relume {
@@ -83,7 +86,10 @@ void check_image_write_options(const fs::path& path, const ImageWriteOptions& op
     throw Error(path.string() + ": half floats are for EXR outputs only");
 }
 
-void write_image(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+namespace {
+
+// Throws Error naming `path` when `options` do not fit its format or a pixel is NaN or Inf.
+void check_writable(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
   check_image_write_options(path, options);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     if (!std::isfinite(image.pixels[i])) {
@@ -94,6 +100,12 @@ void write_image(const fs::path& path, const Image& image, const ImageWriteOptio
                   std::to_string(image.pixels[i]));
     }
   }
+}
+
+// Encodes `image` (checked by check_writable) as the format of `path` (its extension; also named
+// in messages) into `target`: a file name or, with `proxy`, the name opened through the proxy.
+void encode_image(const fs::path& path, const std::string& target, OIIO::Filesystem::IOProxy* proxy,
+                  const Image& image, const ImageWriteOptions& options) {
   const bool as_float = writes_float(path, options);
   std::vector<float> data = image.pixels;
   if (!as_float) {
@@ -103,16 +115,35 @@ void write_image(const fs::path& path, const Image& image, const ImageWriteOptio
   const OIIO::TypeDesc stored =
       as_float ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
                : (options.bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+  auto output = OIIO::ImageOutput::create(path.string());
+  if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
+  if (proxy && !output->set_ioproxy(proxy))
+    throw Error("the " + path.extension().string() + " writer cannot write to memory");
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, stored);
+  spec.attribute("Software", version_line());
+  if (!output->open(target, spec))
+    throw Error("cannot write " + path.string() + ": " + output->geterror());
+  if (!output->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !output->close())
+    throw Error("cannot write " + path.string() + ": " + output->geterror());
+}
+
+}  // namespace
+
+void write_image(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+  check_writable(path, image, options);
   write_atomically(path, [&](const fs::path& temp) {
-    auto output = OIIO::ImageOutput::create(path.string());
-    if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, stored);
-    spec.attribute("Software", version_line());
-    if (!output->open(temp.string(), spec))
-      throw Error("cannot write " + path.string() + ": " + output->geterror());
-    if (!output->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !output->close())
-      throw Error("cannot write " + path.string() + ": " + output->geterror());
+    encode_image(path, temp.string(), nullptr, image, options);
   });
+}
+
+std::string encode_image_bytes(const std::string& extension, const Image& image,
+                               const ImageWriteOptions& options) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  const std::string name = "memory" + extension;
+  check_writable(name, image, options);
+  encode_image(name, name, &memory, image, options);
+  return std::string(bytes.begin(), bytes.end());
 }
 
 }  // namespace relume
