@@ -14,6 +14,7 @@
 #include "core/memory_budget.hpp"
 #include "image/image_bytes.hpp"
 #include "image/image_encoding.hpp"
+#include "image/srgb_codes.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -107,14 +108,22 @@ void check_writable(const fs::path& path, const Image& image, const ImageWriteOp
 void encode_image(const fs::path& path, const std::string& target, OIIO::Filesystem::IOProxy* proxy,
                   const Image& image, const ImageWriteOptions& options) {
   const bool as_float = writes_float(path, options);
-  std::vector<float> data = image.pixels;
-  if (!as_float) {
-    const float scale = static_cast<float>(std::exp2(options.exposure));
-    for (float& v : data) v = linear_to_srgb(std::clamp(v * scale, 0.0f, 1.0f));
+  const bool eight_bit = !as_float && options.bits != 16;
+  const float scale = static_cast<float>(std::exp2(options.exposure));
+  // Integer outputs: exposed, clamped, sRGB-encoded; 8 bits straight to their codes by table.
+  std::vector<float> data;
+  std::vector<std::uint8_t> codes;
+  if (eight_bit) {
+    codes.resize(image.pixels.size());
+    for (std::size_t i = 0; i < codes.size(); ++i) codes[i] = srgb_code(image.pixels[i] * scale);
+  } else {
+    data = image.pixels;
+    if (!as_float)
+      for (float& v : data) v = linear_to_srgb(std::clamp(v * scale, 0.0f, 1.0f));
   }
-  const OIIO::TypeDesc stored =
-      as_float ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
-               : (options.bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+  const OIIO::TypeDesc stored = as_float
+                                    ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
+                                    : (eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
   auto output = OIIO::ImageOutput::create(path.string());
   if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
   if (proxy && !output->set_ioproxy(proxy))
@@ -123,7 +132,9 @@ void encode_image(const fs::path& path, const std::string& target, OIIO::Filesys
   spec.attribute("Software", version_line());
   if (!output->open(target, spec))
     throw Error("cannot write " + path.string() + ": " + output->geterror());
-  if (!output->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !output->close())
+  const bool written = eight_bit ? output->write_image(OIIO::TypeDesc::UINT8, codes.data())
+                                 : output->write_image(OIIO::TypeDesc::FLOAT, data.data());
+  if (!written || !output->close())
     throw Error("cannot write " + path.string() + ": " + output->geterror());
 }
 
