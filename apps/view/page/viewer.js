@@ -1,8 +1,9 @@
 // The relume view page: reads /info, draws the hemisphere of captured light directions, turns
 // drags and controls into the viewer's state and shows GET /frame for it. Requests are coalesced:
-// at most one frame is in flight, and when it returns the newest state is sent (latest wins), so
-// dragging stays responsive however long a frame takes. window.relumeViewer exposes the state,
-// the query of the frame on screen and requestFrame() (for scripts, tests and the benchmark).
+// at most one frame is in flight, and when it has arrived the newest state is sent (latest wins)
+// while the arrived one is decoded, so dragging stays responsive however long a frame takes.
+// window.relumeViewer exposes the state, the query of the frame on screen and requestFrame() (for
+// scripts, tests and the benchmark).
 'use strict';
 
 const viewer = (window.relumeViewer = {
@@ -55,22 +56,41 @@ function frameUrl(format) {
   return '/frame?' + frameQuery(viewer.state) + '&format=' + format;
 }
 
-// Asks for a frame of the current state: sent now, or when the frame in flight returns.
+// Asks for a frame of the current state: sent now, or when the frame in flight has arrived.
 function requestFrame() {
   viewer.pending = true;
-  element('save-png').href = frameUrl('png');
-  element('save-exr').href = frameUrl('exr');
-  describeLight();
-  drawHemisphere();
+  redrawControls();
   if (!viewer.inFlight) sendFrame();
 }
 viewer.requestFrame = requestFrame;
 
+// The widget, the light's description and the save links, redrawn at most once per display
+// frame however fast pointer moves come.
+let redrawScheduled = false;
+function redrawControls() {
+  if (redrawScheduled) return;
+  redrawScheduled = true;
+  requestAnimationFrame(() => {
+    redrawScheduled = false;
+    element('save-png').href = frameUrl('png');
+    element('save-exr').href = frameUrl('exr');
+    describeLight();
+    drawHemisphere();
+  });
+}
+
+let framesSent = 0; // numbers the frames, so that a late decode never replaces a newer frame
+let newestShown = 0;
+
+// Sends the current state; once its frame has arrived the next state (if any) is sent while this
+// one is decoded and shown, so decoding overlaps the server's next render.
 async function sendFrame() {
   viewer.pending = false;
   viewer.inFlight = true;
   const query = frameQuery(viewer.state);
+  const number = ++framesSent;
   const started = performance.now();
+  let frame = null;
   try {
     const response = await fetch('/frame?' + query + '&format=' + element('transfer').value);
     if (response.status === 429) {
@@ -80,30 +100,42 @@ async function sendFrame() {
     } else if (!response.ok) {
       element('message').textContent = await response.text();
     } else {
-      await showFrame(await response.blob(), query, response.headers, performance.now() - started);
-      element('message').textContent = '';
+      frame = { blob: await response.blob(), headers: response.headers };
     }
   } catch (error) {
     element('message').textContent = 'no answer from relume view: ' + error;
   }
   viewer.inFlight = false;
   if (viewer.pending) sendFrame();
+  if (frame) await showFrame(frame, number, query, performance.now() - started);
 }
 
-async function showFrame(blob, query, headers, latencyMs) {
+async function showFrame(frame, number, query, latencyMs) {
+  const decoded = new Image();
+  decoded.src = URL.createObjectURL(frame.blob);
+  try {
+    await decoded.decode();
+  } catch (error) {
+    element('message').textContent = 'cannot decode the frame: ' + error;
+  }
+  if (number < newestShown) {
+    URL.revokeObjectURL(decoded.src);
+    return;
+  }
+  newestShown = number;
   const image = element('frame');
   const previous = image.src;
-  image.src = URL.createObjectURL(blob);
-  await image.decode();
+  image.src = decoded.src;
   if (previous.startsWith('blob:')) URL.revokeObjectURL(previous);
   viewer.shownQuery = query;
   viewer.framesShown += 1;
+  element('message').textContent = '';
   const now = performance.now();
   frameTimes.push(now);
   while (frameTimes[0] < now - 1000) frameTimes.shift();
-  const render = headers.get('X-Relume-Render-Ms');
-  const error = headers.get('X-Relume-Residual-Error');
-  const covered = headers.get('X-Relume-Light-Covered');
+  const render = frame.headers.get('X-Relume-Render-Ms');
+  const error = frame.headers.get('X-Relume-Residual-Error');
+  const covered = frame.headers.get('X-Relume-Light-Covered');
   element('stats').textContent =
     frameTimes.length + ' frames/s · frame ' + latencyMs.toFixed(1) + ' ms' +
     (render ? ' · render ' + Number(render).toFixed(1) + ' ms' : '') +
