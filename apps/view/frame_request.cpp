@@ -1,7 +1,9 @@
 // Implementation of the /frame query parameters (frame_request.hpp).
 #include "view/frame_request.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <vector>
 
 #include "core/text_numbers.hpp"
@@ -11,6 +13,16 @@ namespace relume {
 namespace {
 
 using Parameters = std::multimap<std::string, std::string>;
+
+// In the order of the enumerations.
+struct FormatNames {
+  const char* name;
+  const char* extension;  // for write_image / encode_image_bytes
+  const char* content_type;
+};
+constexpr FormatNames formats[] = {
+    {"png", ".png", "image/png"}, {"jpeg", ".jpg", "image/jpeg"}, {"exr", ".exr", "image/x-exr"}};
+constexpr const char* view_names[] = {"image", "error", "mask"};
 
 const char* const known_parameters[] = {"light",    "rotate",   "map",    "color", "spread",
                                         "exposure", "residual", "format", "view"};
@@ -120,49 +132,10 @@ FrameLight parse_light(const Parameters& parameters, const FrameLight& defaults,
 
 }  // namespace
 
-const char* format_name(FrameFormat format) {
-  switch (format) {
-    case FrameFormat::jpeg:
-      return "jpeg";
-    case FrameFormat::exr:
-      return "exr";
-    default:
-      return "png";
-  }
-}
-
-const char* view_name(FrameView view) {
-  switch (view) {
-    case FrameView::error:
-      return "error";
-    case FrameView::mask:
-      return "mask";
-    default:
-      return "image";
-  }
-}
-
-const char* format_extension(FrameFormat format) {
-  switch (format) {
-    case FrameFormat::jpeg:
-      return ".jpg";
-    case FrameFormat::exr:
-      return ".exr";
-    default:
-      return ".png";
-  }
-}
-
-const char* format_content_type(FrameFormat format) {
-  switch (format) {
-    case FrameFormat::jpeg:
-      return "image/jpeg";
-    case FrameFormat::exr:
-      return "image/x-exr";
-    default:
-      return "image/png";
-  }
-}
+const char* format_name(FrameFormat format) { return formats[int(format)].name; }
+const char* format_extension(FrameFormat format) { return formats[int(format)].extension; }
+const char* format_content_type(FrameFormat format) { return formats[int(format)].content_type; }
+const char* view_name(FrameView view) { return view_names[int(view)]; }
 
 FrameRequest parse_frame_request(const Parameters& parameters, const FrameRequest& defaults,
                                  const FrameLimits& limits) {
@@ -181,16 +154,16 @@ FrameRequest parse_frame_request(const Parameters& parameters, const FrameReques
     }
   }
   if (const std::string* format = find(parameters, "format")) {
-    bool known = false;
-    for (const FrameFormat f : {FrameFormat::png, FrameFormat::jpeg, FrameFormat::exr})
-      if (*format == format_name(f)) request.format = f, known = true;
-    if (!known) throw bad_value("format", *format, "expected png, jpeg or exr");
+    const auto* known = std::find_if(std::begin(formats), std::end(formats),
+                                     [&](const FormatNames& f) { return *format == f.name; });
+    if (known == std::end(formats)) throw bad_value("format", *format, "expected png, jpeg or exr");
+    request.format = FrameFormat(known - std::begin(formats));
   }
   if (const std::string* view = find(parameters, "view")) {
-    bool known = false;
-    for (const FrameView v : {FrameView::image, FrameView::error, FrameView::mask})
-      if (*view == view_name(v)) request.view = v, known = true;
-    if (!known) throw bad_value("view", *view, "expected image, error or mask");
+    const auto* known = std::find(std::begin(view_names), std::end(view_names), *view);
+    if (known == std::end(view_names))
+      throw bad_value("view", *view, "expected image, error or mask");
+    request.view = FrameView(known - std::begin(view_names));
   }
   return request;
 }

@@ -23,6 +23,7 @@ class BadRequest : public Error {
   using Error::Error;
 };
 
+// (frame_request.cpp names them in this order.)
 enum class FrameFormat { png, jpeg, exr };
 enum class FrameView { image, error, mask };
 

@@ -108,23 +108,14 @@ class ViewProcess {
   int status_ = -1;
 };
 
-class ViewServer : public ::testing::Test {
+class ViewServer : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new testing::TempDir;
-    run_or_fail("synth -o '" + path("scene") + "' --size 24x20 --lights 40 --samples 1");
-    run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
-                "' --clusters 4 --terms 2 --residual 6");
+    CommandSuite::SetUpTestSuite();
+    make_small_scene();
     run_or_fail("sky -o '" + path("sky.exr") + "' --width 128");
     run_or_fail("sky -o '" + path("dusk.exr") +
                 "' --width 128 --sun-elevation 8 --sun-azimuth 120");
-  }
-  static void TearDownTestSuite() { delete folder_; }
-
-  static std::string path(const std::string& name) { return (*folder_ / name).string(); }
-  static void run_or_fail(const std::string& arguments) {
-    const auto result = testing::run_relume(arguments);
-    ASSERT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
   }
 
   // Starts `relume view scene.relume --port 0 ARGS` and connects a client to it.
@@ -132,7 +123,7 @@ class ViewServer : public ::testing::Test {
                                                           path("dusk.exr")}) {
     std::vector<std::string> all = {"-q", path("scene.relume"), "--port", "0"};
     all.insert(all.end(), arguments.begin(), arguments.end());
-    server_ = std::make_unique<ViewProcess>(all, *folder_ / "server.log");
+    server_ = std::make_unique<ViewProcess>(all, path("server.log"));
     port_ = server_->wait_for_port();
     ASSERT_GT(port_, 0) << server_->log();
     client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
@@ -150,7 +141,7 @@ class ViewServer : public ::testing::Test {
     const httplib::Result result = get(target);
     if (!result) return {};
     EXPECT_EQ(result->status, 200) << target << ": " << result->body;
-    const fs::path file = *folder_ / ("frame" + extension);
+    const fs::path file = path("frame" + extension);
     std::ofstream(file, std::ios::binary) << result->body;
     return read_image(file);
   }
@@ -162,13 +153,10 @@ class ViewServer : public ::testing::Test {
     return read_image(path("relit.png"));
   }
 
-  static testing::TempDir* folder_;
   std::unique_ptr<ViewProcess> server_;
   std::unique_ptr<httplib::Client> client_;
   int port_ = 0;
 };
-
-testing::TempDir* ViewServer::folder_ = nullptr;
 
 void expect_same_pixels(const Image& a, const Image& b, const std::string& what) {
   ASSERT_EQ(a.width, b.width) << what;
@@ -419,7 +407,7 @@ TEST_F(ViewServer, ListeningBeyondLoopbackWarns) {
 TEST_F(ViewServer, ATakenPortIsAnError) {
   start();
   const std::string port = std::to_string(port_);
-  ViewProcess second({path("scene.relume"), "--port", port}, *folder_ / "second.log");
+  ViewProcess second({path("scene.relume"), "--port", port}, path("second.log"));
   EXPECT_EQ(second.wait_exit(), 1);
   EXPECT_THAT(second.log(), ::testing::HasSubstr("cannot listen on 127.0.0.1 port " + port));
 }
