@@ -1,4 +1,6 @@
-// OpenImageIO-backed implementation of read_image / write_image.
+// OpenImageIO-backed implementation of read_image / write_image, and of encode_image_bytes
+// (image/image_bytes.hpp), which encodes the same way into memory.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -10,7 +12,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/memory_budget.hpp"
+#include "image/image_bytes.hpp"
 #include "image/image_encoding.hpp"
+#include "image/srgb_codes.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -83,7 +87,10 @@ void check_image_write_options(const fs::path& path, const ImageWriteOptions& op
     throw Error(path.string() + ": half floats are for EXR outputs only");
 }
 
-void write_image(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+namespace {
+
+// Throws Error naming `path` when `options` do not fit its format or a pixel is NaN or Inf.
+void check_writable(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
   check_image_write_options(path, options);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     if (!std::isfinite(image.pixels[i])) {
@@ -94,25 +101,60 @@ void write_image(const fs::path& path, const Image& image, const ImageWriteOptio
                   std::to_string(image.pixels[i]));
     }
   }
+}
+
+// Encodes `image` (checked by check_writable) as the format of `path` (its extension; also named
+// in messages) into `target`: a file name or, with `proxy`, the name opened through the proxy.
+void encode_image(const fs::path& path, const std::string& target, OIIO::Filesystem::IOProxy* proxy,
+                  const Image& image, const ImageWriteOptions& options) {
   const bool as_float = writes_float(path, options);
-  std::vector<float> data = image.pixels;
-  if (!as_float) {
-    const float scale = static_cast<float>(std::exp2(options.exposure));
-    for (float& v : data) v = linear_to_srgb(std::clamp(v * scale, 0.0f, 1.0f));
+  const bool eight_bit = !as_float && options.bits != 16;
+  const float scale = static_cast<float>(std::exp2(options.exposure));
+  // Integer outputs: exposed, clamped, sRGB-encoded; 8 bits straight to their codes by table.
+  std::vector<float> data;
+  std::vector<std::uint8_t> codes;
+  if (eight_bit) {
+    codes.resize(image.pixels.size());
+    for (std::size_t i = 0; i < codes.size(); ++i) codes[i] = srgb_code(image.pixels[i] * scale);
+  } else {
+    data = image.pixels;
+    if (!as_float)
+      for (float& v : data) v = linear_to_srgb(std::clamp(v * scale, 0.0f, 1.0f));
   }
-  const OIIO::TypeDesc stored =
-      as_float ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
-               : (options.bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+  const OIIO::TypeDesc stored = as_float
+                                    ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
+                                    : (eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+  auto output = OIIO::ImageOutput::create(path.string());
+  if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
+  if (proxy && !output->set_ioproxy(proxy))
+    throw Error("the " + path.extension().string() + " writer cannot write to memory");
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, stored);
+  spec.attribute("Software", version_line());
+  if (!output->open(target, spec))
+    throw Error("cannot write " + path.string() + ": " + output->geterror());
+  const bool written = eight_bit ? output->write_image(OIIO::TypeDesc::UINT8, codes.data())
+                                 : output->write_image(OIIO::TypeDesc::FLOAT, data.data());
+  if (!written || !output->close())
+    throw Error("cannot write " + path.string() + ": " + output->geterror());
+}
+
+}  // namespace
+
+void write_image(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+  check_writable(path, image, options);
   write_atomically(path, [&](const fs::path& temp) {
-    auto output = OIIO::ImageOutput::create(path.string());
-    if (!output) throw Error("no image writer for " + path.string() + ": " + OIIO::geterror());
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, stored);
-    spec.attribute("Software", version_line());
-    if (!output->open(temp.string(), spec))
-      throw Error("cannot write " + path.string() + ": " + output->geterror());
-    if (!output->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !output->close())
-      throw Error("cannot write " + path.string() + ": " + output->geterror());
+    encode_image(path, temp.string(), nullptr, image, options);
   });
+}
+
+std::string encode_image_bytes(const std::string& extension, const Image& image,
+                               const ImageWriteOptions& options) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  const std::string name = "memory" + extension;
+  check_writable(name, image, options);
+  encode_image(name, name, &memory, image, options);
+  return std::string(bytes.begin(), bytes.end());
 }
 
 }  // namespace relume

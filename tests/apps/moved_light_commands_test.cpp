@@ -21,9 +21,7 @@ class MovedLightCommands : public testing::CommandSuite {
  protected:
   static void SetUpTestSuite() {
     CommandSuite::SetUpTestSuite();
-    run_or_fail("synth -o '" + path("scene") + "' --size 24x20 --lights 40 --samples 1");
-    run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
-                "' --clusters 4 --terms 2 --residual 6");
+    make_small_scene();
   }
 
   static Image relight(const std::string& input, const std::string& light_arguments,

@@ -81,6 +81,12 @@ CommandResult CommandSuite::run_or_fail(const std::string& arguments) {
   return result;
 }
 
+void CommandSuite::make_small_scene() {
+  run_or_fail("synth -o '" + path("scene") + "' --size 24x20 --lights 40 --samples 1");
+  run_or_fail("compress '" + path("scene") + "' -o '" + path("scene.relume") +
+              "' --clusters 4 --terms 2 --residual 6");
+}
+
 double relative_squared_difference(const Image& a, const Image& b) {
   EXPECT_EQ(a.pixels.size(), b.pixels.size());
   double difference = 0, energy = 0;

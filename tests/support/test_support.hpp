@@ -66,6 +66,9 @@ class CommandSuite : public ::testing::Test {
   static std::string path(const std::string& name);
   // run_relume(arguments), expecting exit status 0 (a failure names the arguments and output).
   static CommandResult run_or_fail(const std::string& arguments);
+  // The small synthetic field of the command suites, "scene" (24 x 20, 40 lights), and its
+  // container "scene.relume" (4 clusters, 2 terms, 6 residual entries).
+  static void make_small_scene();
 
  private:
   static TempDir* folder_;

@@ -1,0 +1,18 @@
+// 8-bit sRGB codes of linear values by table, as write_image stores integer outputs: the code of
+// a linear value v in [0, 1] is OpenImageIO's float-to-8-bit conversion of linear_to_srgb(v).
+// Evaluating that curve costs a pow per value, most of the time an 8-bit encode of a viewer frame
+// took (docs/viewer.md); the table gives the same code from a bin lookup and one comparison. It is
+// built once from the curve itself: the 255 thresholds where the code steps up (found by bisection
+// over the floats, the curve being non-decreasing) and, for each of 8192 bins of [0, 1], the code
+// at its start and the one threshold it may hold (codes are at least 1 / (255 x 12.92) apart, wider
+// than a bin).
+#pragma once
+
+#include <cstdint>
+
+namespace relume {
+
+// The code of linear_to_srgb(v) in 8 bits; v is clamped to [0, 1] (NaN is refused before).
+std::uint8_t srgb_code(float linear);
+
+}  // namespace relume
