@@ -26,19 +26,8 @@ std::vector<float> least_squares_subspace(const WorkingRows& rows,
 }
 
 Eigen::MatrixXf orthonormal_columns(const float* basis, int terms, int lights) {
-  Eigen::MatrixXd q(lights, terms);
-  for (int j = 0; j < terms; ++j) {
-    Eigen::VectorXd v(lights);
-    for (int i = 0; i < lights; ++i) v[i] = basis[std::size_t(j) * lights + i];
-    const double original = v.norm();
-    for (int pass = 0; pass < 2; ++pass)  // modified Gram-Schmidt, twice for stability
-      for (int l = 0; l < j; ++l) v -= q.col(l).dot(v) * q.col(l);
-    const double remaining = v.norm();
-    if (remaining > 1e-6 * original && remaining > 0)
-      q.col(j) = v / remaining;
-    else
-      q.col(j).setZero();
-  }
+  Eigen::MatrixXd q = Eigen::Map<const RowMatrixF>(basis, terms, lights).transpose().cast<double>();
+  orthonormalise_columns(q, DependentColumn::zero);
   return q.cast<float>();
 }
 

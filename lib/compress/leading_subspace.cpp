@@ -20,26 +20,6 @@ constexpr double energy_tolerance = 1e-7;
 // Eigenvalues below this fraction of the largest are X's null space.
 constexpr double rank_tolerance = 1e-12;
 
-// Orthonormalises V's columns in place by modified Gram-Schmidt (twice, for stability), replacing
-// columns that are (nearly) dependent on the earlier ones by unit vectors that are not.
-void orthonormalise_and_complete(Eigen::MatrixXd& V) {
-  const Eigen::Index m = V.rows();
-  Eigen::Index next_unit = 0;
-  for (Eigen::Index j = 0; j < V.cols(); ++j) {
-    for (;;) {
-      const double original = V.col(j).norm();
-      for (int pass = 0; pass < 2; ++pass)
-        for (Eigen::Index l = 0; l < j; ++l) V.col(j) -= V.col(l).dot(V.col(j)) * V.col(l);
-      const double remaining = V.col(j).norm();
-      if (remaining > 1e-6 * original && remaining > 0) {
-        V.col(j) /= remaining;
-        break;
-      }
-      V.col(j) = Eigen::VectorXd::Unit(m, next_unit++ % m);
-    }
-  }
-}
-
 // Eigenvectors of a symmetric matrix for its `count` largest eigenvalues, largest first; columns
 // whose eigenvalue is in the null space are zero.
 Eigen::MatrixXd leading_eigenvectors(const Eigen::MatrixXd& symmetric, int count) {
@@ -101,6 +81,28 @@ Eigen::MatrixXd by_subspace_iteration(const RowMatrixF& X, int terms, const floa
 
 }  // namespace
 
+void orthonormalise_columns(Eigen::MatrixXd& V, DependentColumn dependent) {
+  const Eigen::Index m = V.rows();
+  Eigen::Index next_unit = 0;
+  for (Eigen::Index j = 0; j < V.cols(); ++j) {
+    for (;;) {
+      const double original = V.col(j).norm();
+      for (int pass = 0; pass < 2; ++pass)  // modified Gram-Schmidt, twice for stability
+        for (Eigen::Index l = 0; l < j; ++l) V.col(j) -= V.col(l).dot(V.col(j)) * V.col(l);
+      const double remaining = V.col(j).norm();
+      if (remaining > 1e-6 * original && remaining > 0) {
+        V.col(j) /= remaining;
+        break;
+      }
+      if (dependent == DependentColumn::zero) {
+        V.col(j).setZero();
+        break;
+      }
+      V.col(j) = Eigen::VectorXd::Unit(m, next_unit++ % m);
+    }
+  }
+}
+
 Eigen::MatrixXd leading_right_singular_vectors(const RowMatrixF& X, int terms,
                                                SubspaceMethod method, const float* warm_start) {
   if (method == SubspaceMethod::automatic) {
@@ -117,7 +119,7 @@ Eigen::MatrixXd leading_right_singular_vectors(const RowMatrixF& X, int terms,
                       : method == SubspaceMethod::gram
                           ? from_gram(X, terms)
                           : by_subspace_iteration(X, terms, warm_start);
-  orthonormalise_and_complete(V);
+  orthonormalise_columns(V, DependentColumn::unit_vector);
   return V.transpose();
 }
 

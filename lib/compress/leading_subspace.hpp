@@ -10,6 +10,13 @@
 
 namespace relume {
 
+// What orthonormalise_columns puts in place of a column (nearly) dependent on the earlier ones.
+enum class DependentColumn { zero, unit_vector };
+
+// Orthonormalises V's columns in place by modified Gram-Schmidt (twice, for stability); a column
+// that is (nearly) in the span of the earlier ones becomes zero, or a unit vector that is not.
+void orthonormalise_columns(Eigen::MatrixXd& V, DependentColumn dependent);
+
 // How to find the subspace: `automatic` picks the cheaper of the two by a flop estimate.
 enum class SubspaceMethod { automatic, gram, subspace_iteration };
 
