@@ -20,26 +20,29 @@ using testing::error_message;
 using ::testing::HasSubstr;
 
 // A container of `width` x `height` one-channel pixels, one light, nothing stored (an all-outside
-// mask): every section valid, written with the real frame code.
-std::string crafted_container(std::int64_t width, std::int64_t height, const float direction[3]) {
-  const nlohmann::json header = {{"width", width},
-                                 {"height", height},
-                                 {"channels", 1},
-                                 {"lights", 1},
-                                 {"terms", 0},
-                                 {"clusters", 0},
-                                 {"transform", "identity"},
-                                 {"stored_rows", 0},
-                                 {"residual_nonzeros", 0},
-                                 {"weights_precision", "float32"},
-                                 {"residual_precision", "float32"},
-                                 {"weight_step", 0},
-                                 {"residual_step", 0},
-                                 {"basis_bits", 0},
-                                 {"cluster_id_bits", 8},
-                                 {"residual_length_bits", 8},
-                                 {"light_index_bits", 8},
-                                 {"parameters", nlohmann::json::object()}};
+// mask): every section valid, written with the real frame code. `header_keys` are added to (or
+// replace keys of) its header.
+std::string crafted_container(std::int64_t width, std::int64_t height, const float direction[3],
+                              const nlohmann::json& header_keys = nlohmann::json::object()) {
+  nlohmann::json header = {{"width", width},
+                           {"height", height},
+                           {"channels", 1},
+                           {"lights", 1},
+                           {"terms", 0},
+                           {"clusters", 0},
+                           {"transform", "identity"},
+                           {"stored_rows", 0},
+                           {"residual_nonzeros", 0},
+                           {"weights_precision", "float32"},
+                           {"residual_precision", "float32"},
+                           {"weight_step", 0},
+                           {"residual_step", 0},
+                           {"basis_bits", 0},
+                           {"cluster_id_bits", 8},
+                           {"residual_length_bits", 8},
+                           {"light_index_bits", 8},
+                           {"parameters", nlohmann::json::object()}};
+  header.update(header_keys);
   ByteWriter lights;
   for (int c = 0; c < 3; ++c) lights.f32(direction[c]);
   for (int c = 0; c < 3; ++c) lights.f32(1.0f);
@@ -69,6 +72,17 @@ TEST(HostileContainer, TheCraftedFileIsValidAtASaneSize) {
   const CompressedField field = decode_container(crafted_container(7, 5, up), "small.relume");
   EXPECT_EQ(field.mask.size(), 35u);
   EXPECT_EQ(field.stored_rows(), 0u);
+}
+
+TEST(HostileContainer, TheNonNegativeMarkIsABooleanOrAbsent) {
+  EXPECT_FALSE(decode_container(crafted_container(7, 5, up), "unmarked.relume").non_negative);
+  EXPECT_TRUE(decode_container(crafted_container(7, 5, up, {{"non_negative", true}}), "m.relume")
+                  .non_negative);
+  EXPECT_THAT(
+      error_message([&] {
+        decode_container(crafted_container(7, 5, up, {{"non_negative", "yes"}}), "bad.relume");
+      }),
+      HasSubstr("bad.relume: section 'header': 'non_negative' is not true or false"));
 }
 
 TEST(HostileContainer, PixelCountsBeyondTheLimitAreRefusedBeforeAllocating) {
