@@ -54,6 +54,7 @@ struct CompressArguments {
   std::string residual_precision = "quantized";
   std::string bases_precision = "quantized";
   double quantization_budget = QuantizationBudget{}.relative_increase;
+  double term_budget = QuantizationBudget{}.term_increase;
   double target_error = 0;
   std::uint64_t target_bytes = 0;
   double target_bytes_per_pixel = 0;
@@ -125,6 +126,7 @@ StoragePrecision storage_precision(const CompressArguments& arguments,
   precision.residual = parse_value_precision(arguments.residual_precision);
   precision.quantize_bases = arguments.bases_precision == "quantized";
   precision.budget = arguments.quantization_budget;
+  precision.term_budget = arguments.term_budget;
   precision.threads = options.clustering.threads;
   return precision;
 }
@@ -289,6 +291,11 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
           {"basis_bits", quantization->steps.basis_bits},
           {"sample_error_unquantized", quantization->error_unquantized},
           {"sample_error_quantized", quantization->error_quantized}};
+    if (quantization && !quantization->cluster_terms.empty())
+      report["precision_cost"]["terms_per_cluster"] = {
+          {"budget", precision.term_budget},
+          {"error_all_terms", quantization->error_all_terms},
+          {"terms", quantization->cluster_terms}};
   }
   say("%s", summary_line(report, stats.clusters).c_str());
   for (const auto& [phase, seconds] : report["phases_seconds"].items())
@@ -520,6 +527,14 @@ const CommandRegistration registration{
           ->add_option("--quantization-budget", arguments->quantization_budget,
                        "How much quantization may add to the error (paper Eq. 16) over the "
                        "stored functions, relative (0.01: 1%)")
+          ->capture_default_str();
+      command
+          ->add_option("--term-budget", arguments->term_budget,
+                       "With quantized storage, how much dropping the basis terms that "
+                       "clusters of dim or simple functions do not need may add to the error "
+                       "(Eq. 16), relative: the terms that cost the most bytes per error go "
+                       "first (0: every cluster keeps all --terms). Pays on noisy whole frames "
+                       "(docs/compression.md, 'Terms per cluster')")
           ->capture_default_str();
       command->add_option(
           "--report", arguments->report,

@@ -169,6 +169,7 @@ def compress(
     residual_precision: str = "quantized",
     bases_precision: str = "quantized",
     quantization_budget: float = 0.01,
+    term_budget: float = 0.0,
     target_error: Optional[float] = None,
     quiet: bool = True,
     progress: Optional[Progress] = None,

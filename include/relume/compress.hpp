@@ -57,7 +57,11 @@ struct CompressOptions {
   ValuePrecision residual_precision = ValuePrecision::quantized;
   bool quantize_bases = true;         // 8 to 16 bits per basis value, a scale per basis row
   double quantization_budget = 0.01;  // what quantization may add to the Eq. 16 error, relative
-  bool quiet = true;                  // no progress lines on stderr
+  // With quantized storage: what dropping the basis terms that clusters of dim or simple
+  // functions do not need may add to the Eq. 16 error, relative; 0 (the default: on the data
+  // measured, one residual entry fewer saves bytes more cheaply) keeps every term.
+  double term_budget = 0;
+  bool quiet = true;  // no progress lines on stderr
   // Told (phase, fraction of it done in [0, 1]) at the start and end of each phase and about
   // every 0.1 s in between, on the thread that called compress(), e.g. ("compress: iteration 2,
   // assigning", 0.4). An exception it throws ends compress() and propagates: throw Interrupted

@@ -17,8 +17,11 @@
 
 namespace relume {
 
-// The version write_container writes; read_container also reads version 1 (no entropy coding).
-inline constexpr std::uint32_t container_format_version = 2;
+// The version write_container writes; read_container also reads versions 1 (no entropy coding)
+// and 2 (every cluster stores a weight for each of its terms). From version 3 a stored row has
+// no weight for a term whose basis row is all zero: the clusters that need fewer terms than the
+// field's `terms` (model/cluster_terms.hpp) store only the weights they use.
+inline constexpr std::uint32_t container_format_version = 3;
 
 // How W or the residual values are stored: float32, IEEE half, or integers times the field's
 // quantization step (ValuePrecision::quantized: always so for a quantized field, see

@@ -57,6 +57,7 @@ CompressedField compress(const ReflectanceField& field, const CompressOptions& o
   storage.residual = options.residual_precision;
   storage.quantize_bases = options.quantize_bases;
   storage.budget = options.quantization_budget;
+  storage.term_budget = options.term_budget;
   storage.threads = options.threads;
   const QuantizationBudget budget = storage.quantization_budget();  // checks it before the work
   const ProgressListenerScope listening(options.progress);

@@ -12,8 +12,12 @@ QuantizationBudget StoragePrecision::quantization_budget() const {
   if (!(budget > 0) || !std::isfinite(budget))
     throw Error("the quantization budget must be a relative error increase > 0, got " +
                 std::to_string(budget));
+  if (!(term_budget >= 0) || !std::isfinite(term_budget))
+    throw Error("the term budget must be a relative error increase >= 0, got " +
+                std::to_string(term_budget));
   QuantizationBudget result;
   result.relative_increase = budget;
+  result.term_increase = term_budget;
   result.weights = weights == ValuePrecision::quantized;
   result.residual = residual == ValuePrecision::quantized;
   result.bases = quantize_bases;

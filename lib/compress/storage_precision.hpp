@@ -15,7 +15,8 @@ struct StoragePrecision {
   ValuePrecision weights = ValuePrecision::quantized;
   ValuePrecision residual = ValuePrecision::quantized;
   bool quantize_bases = true;
-  double budget = QuantizationBudget{}.relative_increase;  // of the Eq. 16 error
+  double budget = QuantizationBudget{}.relative_increase;   // of the Eq. 16 error
+  double term_budget = QuantizationBudget{}.term_increase;  // 0: every cluster keeps all terms
   unsigned threads = 0;
 
   bool quantizes() const {
@@ -27,7 +28,7 @@ struct StoragePrecision {
 };
 
 // `field`, compressed from `original`, as stored; the quantization chosen, if any. Throws Error
-// for a budget that is not a positive number.
+// for a budget that is not a positive number or a term budget that is negative.
 std::optional<QuantizationChoice> store_with_precision(const ReflectanceField& original,
                                                        CompressedField& field,
                                                        const StoragePrecision& precision);

@@ -14,6 +14,7 @@
 #include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
 #include "core/memory_budget.hpp"
+#include "model/cluster_terms.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/quantization.hpp"
 
@@ -163,8 +164,15 @@ class ContainerDecoder {
   void check_row_section_sizes(const CompressedField& field, const DecodedHeader& header) const {
     const std::uint64_t rows = header.stored_rows;
     sized_reader("clusters", {rows, std::uint64_t(header.widths.cluster_id_bytes)});
-    sized_reader("weights", {rows, std::uint64_t(field.terms),
-                             std::uint64_t(value_bytes(header.options.weights))});
+    // From version 3 the weights of unused basis rows are left out (decode_weights checks the
+    // exact size); every version's weights fit stored rows x terms values.
+    const std::uint64_t all_weights_bytes = checked_product(
+        {rows, std::uint64_t(field.terms), std::uint64_t(value_bytes(header.options.weights))},
+        where("weights"));
+    if (parsed_.layout.version >= 3)
+      reader("weights", all_weights_bytes);
+    else
+      sized_reader("weights", {all_weights_bytes});
     sized_reader("residual_offsets", {rows, std::uint64_t(header.widths.residual_length_bytes)});
     sized_reader("residual_indices",
                  {header.nonzeros, std::uint64_t(header.widths.light_index_bytes)});
@@ -336,14 +344,22 @@ class ContainerDecoder {
     return float(double(q) * step);
   }
 
+  // Which terms' weights the rows of each cluster store (k * terms + j): from version 3 those of
+  // the used basis rows (model/cluster_terms.hpp), before that all.
+  std::vector<std::uint8_t> stored_terms(const CompressedField& field) const {
+    if (parsed_.layout.version >= 3) return used_basis_rows(field);
+    return std::vector<std::uint8_t>(std::size_t(field.clusters) * field.terms, 1);
+  }
+
   void decode_weights(CompressedField& field, const DecodedHeader& header) const {
-    ByteReader in = sized_reader("weights", {header.stored_rows, std::uint64_t(field.terms),
+    const std::vector<std::uint8_t> stored = stored_terms(field);
+    ByteReader in = sized_reader("weights", {stored_weight_count(field, stored),
                                              std::uint64_t(value_bytes(header.options.weights))});
-    field.weights.resize(Eigen::Index(header.stored_rows), field.terms);
+    field.weights.setZero(Eigen::Index(header.stored_rows), field.terms);
     if (header.options.weights == ValuePrecision::quantized) {
-      std::vector<std::uint16_t> errors(std::size_t(field.weights.size()));
+      std::vector<std::uint16_t> errors(in.remaining() / 2);
       for (std::uint16_t& error : errors) error = in.u16();
-      const std::vector<std::int32_t> integers = unpredict_weights(field, errors);
+      const std::vector<std::int32_t> integers = unpredict_weights(field, errors, stored);
       for (std::size_t i = 0; i < integers.size(); ++i) {
         if (integers[i] < -max_quantized_value)
           in.fail("predicts the integer -32768 for " + weight_text(i, field.terms) +
@@ -353,7 +369,8 @@ class ContainerDecoder {
     } else {
       for (std::uint64_t r = 0; r < header.stored_rows; ++r)
         for (int j = 0; j < field.terms; ++j)
-          field.weights(Eigen::Index(r), j) = get_value(in, header.options.weights);
+          if (stored[std::size_t(field.cluster[r]) * field.terms + j])
+            field.weights(Eigen::Index(r), j) = get_value(in, header.options.weights);
     }
     check_weights(field, where("weights"));
   }

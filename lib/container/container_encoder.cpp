@@ -11,6 +11,7 @@
 #include "container/container_sections.hpp"
 #include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
+#include "model/cluster_terms.hpp"
 #include "model/compressed_field_checks.hpp"
 
 namespace relume {
@@ -134,19 +135,33 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
   const ValuePrecision weight_precision = stored_weight_precision(field, options);
   const ValuePrecision residual_precision = stored_residual_precision(field, options);
   std::string weights, residual_values;
+  // A weight of an all-zero basis row adds nothing to the field and is not stored.
+  const std::vector<std::uint8_t> stored_terms = used_basis_rows(field);
+  auto is_stored = [&](std::size_t i) {
+    return stored_terms[std::size_t(field.cluster[i / field.terms]) * field.terms +
+                        i % field.terms] != 0;
+  };
   if (weight_precision == ValuePrecision::quantized) {
     // Integers, stored as their camera-space prediction errors.
-    std::vector<std::int32_t> integers(std::size_t(field.weights.size()));
+    std::vector<std::int32_t> integers(std::size_t(field.weights.size()), 0);
     for (std::size_t i = 0; i < integers.size(); ++i)
-      integers[i] = std::int32_t(std::lround(field.weights.data()[i] / quantization.weight_step));
+      if (is_stored(i))
+        integers[i] = std::int32_t(std::lround(field.weights.data()[i] / quantization.weight_step));
     ByteWriter out;
-    for (std::uint16_t error : predict_weights(field, integers)) out.u16(error);
+    for (std::uint16_t error : predict_weights(field, integers, stored_terms)) out.u16(error);
     weights = out.take();
   } else {
-    // W is row-major: stored rows x terms.
+    // W is row-major: stored rows x terms, each row's stored terms only.
+    std::vector<float> values;
+    std::vector<std::size_t> index_of;
+    for (std::size_t i = 0; i < std::size_t(field.weights.size()); ++i)
+      if (is_stored(i)) {
+        values.push_back(field.weights.data()[i]);
+        index_of.push_back(i);
+      }
     weights = encode_values(
-        field.weights.data(), std::size_t(field.weights.size()), weight_precision,
-        [&](std::size_t i) { return weight_text(i, field.terms); }, where);
+        values.data(), values.size(), weight_precision,
+        [&](std::size_t v) { return weight_text(index_of[v], field.terms); }, where);
   }
   if (residual_precision == ValuePrecision::quantized) {
     ByteWriter out;

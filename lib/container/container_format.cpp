@@ -53,9 +53,9 @@ std::uint32_t check_magic_and_version(const std::string& bytes, const std::strin
                 " of a container's magic, version and section count");
   ByteReader in(std::string_view(bytes).substr(container_magic.size()), file + ": preamble");
   const std::uint32_t version = in.u32();
-  if (version != 1 && version != container_format_version)
+  if (version < 1 || version > container_format_version)
     throw Error(file + ": container format version " + std::to_string(version) +
-                " is not supported (this relume reads versions 1 and " +
+                " is not supported (this relume reads versions 1 to " +
                 std::to_string(container_format_version) + ")");
   const std::uint32_t count = in.u32();
   const std::size_t expected = container_section_names(version).size();
@@ -83,7 +83,7 @@ const std::vector<std::string_view>& container_section_names(std::uint32_t versi
       "clusters",       "basis_scales",     "bases",
       "weights",        "residual_offsets", "residual_indices",
       "residual_values"};
-  return version == 1 ? version1 : version2;
+  return version == 1 ? version1 : version2;  // version 3 has version 2's sections
 }
 
 std::string assemble_container(const std::vector<StoredSection>& sections, bool entropy_coding,

@@ -2,6 +2,7 @@
 #include "container/weight_prediction.hpp"
 
 #include <algorithm>
+#include <relume/error.hpp>
 
 #include "model/reconstruct_field.hpp"
 
@@ -44,28 +45,48 @@ std::int32_t predict(const Neighbours& n, const std::vector<std::int32_t>& weigh
 
 }  // namespace
 
+std::uint64_t stored_weight_count(const CompressedField& field,
+                                  const std::vector<std::uint8_t>& stored) {
+  std::vector<std::uint64_t> per_cluster(field.clusters, 0);
+  for (std::size_t row = 0; row < stored.size(); ++row)
+    per_cluster[row / field.terms] += stored[row];
+  std::uint64_t count = 0;
+  for (std::uint32_t k : field.cluster) count += per_cluster[k];
+  return count;
+}
+
 std::vector<std::uint16_t> predict_weights(const CompressedField& field,
-                                           const std::vector<std::int32_t>& weights) {
+                                           const std::vector<std::int32_t>& weights,
+                                           const std::vector<std::uint8_t>& stored) {
   const std::vector<Neighbours> around = neighbours(field);
-  std::vector<std::uint16_t> errors(weights.size());
+  std::vector<std::uint16_t> errors;
+  errors.reserve(std::size_t(stored_weight_count(field, stored)));
   for (std::size_t r = 0; r < around.size(); ++r)
     for (int j = 0; j < field.terms; ++j) {
+      if (!stored[std::size_t(field.cluster[r]) * field.terms + j]) continue;
       const std::size_t i = r * field.terms + j;
-      errors[i] = std::uint16_t(weights[i] - predict(around[r], weights, field.terms, j));
+      errors.push_back(std::uint16_t(weights[i] - predict(around[r], weights, field.terms, j)));
     }
   return errors;
 }
 
 std::vector<std::int32_t> unpredict_weights(const CompressedField& field,
-                                            const std::vector<std::uint16_t>& errors) {
+                                            const std::vector<std::uint16_t>& errors,
+                                            const std::vector<std::uint8_t>& stored) {
+  if (errors.size() != stored_weight_count(field, stored))
+    throw Error("the weights hold " + std::to_string(errors.size()) +
+                " prediction errors, the stored rows' clusters use " +
+                std::to_string(stored_weight_count(field, stored)) + " terms");
   const std::vector<Neighbours> around = neighbours(field);
-  std::vector<std::int32_t> weights(errors.size());
+  std::vector<std::int32_t> weights(field.stored_rows() * std::size_t(field.terms), 0);
+  std::size_t next = 0;
   // Neighbours come earlier in function order, so they are decoded before the row that uses them.
   for (std::size_t r = 0; r < around.size(); ++r)
     for (int j = 0; j < field.terms; ++j) {
+      if (!stored[std::size_t(field.cluster[r]) * field.terms + j]) continue;
       const std::size_t i = r * field.terms + j;
       weights[i] =
-          std::int16_t(std::uint16_t(errors[i] + predict(around[r], weights, field.terms, j)));
+          std::int16_t(std::uint16_t(errors[next++] + predict(around[r], weights, field.terms, j)));
     }
   return weights;
 }

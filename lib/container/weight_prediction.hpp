@@ -14,12 +14,24 @@
 
 namespace relume {
 
-// weights: stored rows x terms integers (row-major), each in [-32767, 32767].
+// weights: stored rows x terms integers (row-major), each in [-32767, 32767]. stored[k * terms +
+// j] says whether the rows of cluster k store term j (model/cluster_terms.hpp: the container
+// stores no weight for an all-zero basis row); the errors of the stored terms only, in row
+// order, are returned. The weights of terms that are not stored must be 0: they are predicted
+// from as zeros.
 std::vector<std::uint16_t> predict_weights(const CompressedField& field,
-                                           const std::vector<std::int32_t>& weights);
+                                           const std::vector<std::int32_t>& weights,
+                                           const std::vector<std::uint8_t>& stored);
 
-// The inverse: integers from the stored prediction errors (field.stored_function must be set).
+// The inverse: all stored rows x terms integers, zero where not stored, from the stored
+// prediction errors (field.stored_function and field.cluster must be set). Throws Error unless
+// `errors` holds exactly one value per stored term.
 std::vector<std::int32_t> unpredict_weights(const CompressedField& field,
-                                            const std::vector<std::uint16_t>& errors);
+                                            const std::vector<std::uint16_t>& errors,
+                                            const std::vector<std::uint8_t>& stored);
+
+// The number of weights a field stores: sum over stored rows of the terms their cluster stores.
+std::uint64_t stored_weight_count(const CompressedField& field,
+                                  const std::vector<std::uint8_t>& stored);
 
 }  // namespace relume

@@ -14,7 +14,10 @@
 namespace relume {
 
 // In place; the product W F^k of every row changes only by float rounding. Clusters whose basis
-// has fewer independent rows than terms keep zero weights for the missing directions.
+// has fewer independent rows than terms keep zero weights for the missing directions. Only a
+// cluster's used basis rows (not all zero, model/cluster_terms.hpp) are aligned, to the
+// reference's leading directions; they move to the cluster's first slots, and unused rows and
+// their weights stay zero.
 void align_cluster_bases(CompressedField& field);
 
 }  // namespace relume

@@ -8,6 +8,7 @@
 
 #include "core/parallel.hpp"
 #include "model/basis_alignment.hpp"
+#include "model/cluster_terms.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -211,8 +212,15 @@ QuantizationChoice choose_quantization(const ReflectanceField& original,
 
 QuantizationChoice quantize_with_budget(const ReflectanceField& original, CompressedField& field,
                                         const QuantizationBudget& budget) {
+  TermChoice terms;
+  if (budget.term_increase > 0)
+    terms = drop_unneeded_terms(original, field, budget.term_increase, budget.threads);
   align_cluster_bases(field);
-  const QuantizationChoice choice = choose_quantization(original, field, budget);
+  QuantizationChoice choice = choose_quantization(original, field, budget);
+  if (terms.dropped > 0) {
+    choice.cluster_terms = terms.cluster_terms;
+    choice.error_all_terms = terms.error_all_terms;
+  }
   field = quantize_values(field, choice.steps);
   return choice;
 }

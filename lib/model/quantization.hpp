@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
+#include <vector>
 
 namespace relume {
 
@@ -30,12 +31,19 @@ struct QuantizationBudget {
   double relative_increase = 0.01;  // of the Eq. 16 error over the stored rows
   // The parts to quantize; the others keep float values.
   bool weights = true, residual = true, bases = true;
+  // What dropping the terms each cluster does not need may add to the Eq. 16 error, relative,
+  // before the quantization's own share (model/cluster_terms.hpp); 0 keeps every term.
+  double term_increase = 0;
   std::size_t sample_rows = 20000;  // stored rows the error is measured on (evenly spaced)
   unsigned threads = 0;
 };
 
 struct QuantizationChoice {
   QuantizationSteps steps;
+  // The terms each cluster kept (empty: every cluster kept all) and the Eq. 16 error over the
+  // stored rows with all of them.
+  std::vector<int> cluster_terms;
+  double error_all_terms = 0;
   double error_unquantized = 0;  // Eq. 16 over the sample
   double error_quantized = 0;
 };
@@ -47,7 +55,8 @@ QuantizationChoice choose_quantization(const ReflectanceField& original,
                                        const CompressedField& field,
                                        const QuantizationBudget& budget);
 
-// The whole step: align_cluster_bases, choose_quantization, quantize_values, in place.
+// The whole step, in place: drop_unneeded_terms within budget.term_increase
+// (model/cluster_terms.hpp), align_cluster_bases, choose_quantization, quantize_values.
 QuantizationChoice quantize_with_budget(const ReflectanceField& original, CompressedField& field,
                                         const QuantizationBudget& budget);
 

@@ -55,8 +55,8 @@ void bind_compress(py::module_& module) {
          int max_cluster_size, std::uint64_t seed, unsigned threads, const std::string& assign,
          const std::string& device, const std::string& weights_precision,
          const std::string& residual_precision, const std::string& bases_precision,
-         double quantization_budget, std::optional<double> target_error, bool quiet,
-         py::object progress) {
+         double quantization_budget, double term_budget, std::optional<double> target_error,
+         bool quiet, py::object progress) {
         std::optional<ReflectanceField> from_arrays;
         if (!py::isinstance<ReflectanceField>(field))
           from_arrays = field_from(field, dirs, mask, intensities);
@@ -95,6 +95,7 @@ void bind_compress(py::module_& module) {
         options.quantize_bases =
             one_of("bases_precision", bases_precision, "quantized", "float32") == "quantized";
         options.quantization_budget = quantization_budget;
+        options.term_budget = term_budget;
         if (target_error && !(*target_error > 0))
           throw Error("target_error must be a relative error > 0 (or None), got " +
                       std::to_string(*target_error));
@@ -131,7 +132,7 @@ void bind_compress(py::module_& module) {
       "candidates"_a = 3, "irls_iterations"_a = 5, "min_cluster_size"_a = py::none(),
       "max_cluster_size"_a = 0, "seed"_a = 1, "threads"_a = 0, "assign"_a = "opencl",
       "device"_a = "", "weights_precision"_a = "quantized", "residual_precision"_a = "quantized",
-      "bases_precision"_a = "quantized", "quantization_budget"_a = 0.01,
+      "bases_precision"_a = "quantized", "quantization_budget"_a = 0.01, "term_budget"_a = 0.0,
       "target_error"_a = py::none(), "quiet"_a = true, "progress"_a = py::none(),
       R"(Compress a reflectance field by clustered sparse residual factorization, as
 `relume compress` does (same options, same defaults, same result for the same seed; the
@@ -159,6 +160,8 @@ device"; "" = RELUME_DEVICE, else the first GPU, else PoCL) or "cpu" (the C++ pa
 weights_precision, residual_precision: "quantized" (integers times the coarsest steps that
 add at most quantization_budget, relative, to the Eq. 16 error), "float32" or "float16";
 bases_precision: "quantized" (8 to 16 bits) or "float32". The result is what save() stores.
+term_budget: with quantized storage, what dropping the basis terms that clusters of dim or
+simple functions do not need may add to the Eq. 16 error, relative (0: all terms kept).
 target_error: choose terms, clusters and per-function residual lengths that reach this
 relative error (paper Eq. 16, masked functions) in the fewest bytes (clusters, terms and
 residual are then not used).

@@ -1,6 +1,7 @@
 // Tests of the .relume container: exact round trips, half precision, index widths, entropy-coded
-// sections (format version 2) and version-1 files, and refusal of truncated, altered, foreign and
-// inconsistent files with messages naming the file and section. Also runs `relume info`.
+// sections (format versions 2 and 3) and version-1 files, and refusal of truncated, altered,
+// foreign and inconsistent files with messages naming the file and section. Also runs `relume
+// info`.
 #include "container/container.hpp"
 
 #include <cmath>
@@ -395,11 +396,11 @@ TEST(Container, ForeignFilesWrongMagicAndVersionsGetClearErrors) {
   EXPECT_NE(message.find("magic"), std::string::npos) << message;
 
   std::string version = original;
-  version[8] = 3;
+  version[8] = 4;
   write_bytes(path, version);
   message = read_error(path);
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("version 3 is not supported (this relume reads versions 1 and 2)"),
+  EXPECT_NE(message.find("version 4 is not supported (this relume reads versions 1 to 3)"),
             std::string::npos)
       << message;
 
@@ -568,6 +569,40 @@ TEST(Container, VersionOneFilesStillRead) {
         name == "v1_float16" ? quantize_for_container(sample_field(), stored) : sample_field(),
         field);
   }
+}
+
+// File `path`'s bytes with the format version set to `version` and the table's checksum redone.
+std::string with_version(const std::filesystem::path& path, std::uint32_t version) {
+  std::string bytes = read_file(path);
+  const std::size_t table_end = describe_container(path).preamble_bytes;
+  std::memcpy(bytes.data() + 8, &version, 4);  // little-endian, after the 8-byte magic
+  const std::uint32_t crc = crc32(bytes.data(), table_end - 4);
+  std::memcpy(bytes.data() + table_end - 4, &crc, 4);
+  return bytes;
+}
+
+TEST(Container, VersionTwoFilesStillRead) {
+  // Version 3 differs from version 2 only where a cluster leaves a basis row unused: then
+  // version 2 stored its weights (zeros) and version 3 does not. A field that uses every row
+  // has the same bytes in both, so the version-2 file is the version-3 file relabelled.
+  TempDir dir;
+  const CompressedField field = sample_field();
+  write_container(dir / "v3.relume", field);
+  write_bytes(dir / "v2.relume", with_version(dir / "v3.relume", 2));
+  EXPECT_EQ(describe_container(dir / "v2.relume").version, 2u);
+  expect_identical(field, read_container(dir / "v2.relume"));
+
+  // Where a row is unused, a version-2 reader expects every weight: the version-3 bytes are one
+  // weight per stored row of cluster 0 short of that, and refused so.
+  CompressedField unused = field;
+  std::fill_n(unused.bases.begin() + unused.lights, unused.lights, 0.0f);  // cluster 0, term 1
+  for (std::size_t r = 0; r < unused.stored_rows(); ++r)
+    if (unused.cluster[r] == 0) unused.weights(Eigen::Index(r), 1) = 0;
+  write_container(dir / "unused.relume", unused);
+  expect_identical(unused, read_container(dir / "unused.relume"));
+  write_bytes(dir / "unused_v2.relume", with_version(dir / "unused.relume", 2));
+  const std::string message = read_error(dir / "unused_v2.relume");
+  EXPECT_NE(message.find("section 'weights'"), std::string::npos) << message;
 }
 
 TEST(Container, EntropyCodingIsLosslessAndSmallerOnCompressibleSections) {

@@ -21,6 +21,7 @@ namespace {
 
 using testing::error_message;
 using ::testing::HasSubstr;
+using testing::noisy_original;
 using testing::TempDir;
 
 CompressedField sample_field(std::uint64_t seed = 5) {
@@ -36,20 +37,6 @@ CompressedField sample_field(std::uint64_t seed = 5) {
   shape.stored_fraction = 0.8;
   shape.seed = seed;
   return random_compressed_field(shape);
-}
-
-// A field that `compressed` approximates: its reconstruction plus noise on the stored functions
-// (the others stay zero and have no Eq. 16 error), so the compressed field has a known, non-zero
-// error over exactly its stored rows.
-ReflectanceField original_of(const CompressedField& compressed, double noise) {
-  ReflectanceField field = reconstruct_field(compressed);
-  std::uint32_t state = 99;
-  for (std::uint32_t p : compressed.stored_function)
-    for (int i = 0; i < field.lights(); ++i) {
-      state = state * 1664525u + 1013904223u;
-      field.values(p, i) += float(noise * (double(state >> 8) / double(1 << 24) - 0.5));
-    }
-  return field;
 }
 
 double largest_difference(const ReflectanceField& a, const ReflectanceField& b) {
@@ -125,7 +112,7 @@ TEST(Quantization, ValuesBecomeMultiplesOfTheirStepsAndZerosLeaveTheResidual) {
 
 TEST(Quantization, TheChosenStepsKeepTheBudgetAndCoarserOnesWouldNot) {
   CompressedField field = sample_field();
-  const ReflectanceField original = original_of(field, 0.05);
+  const ReflectanceField original = noisy_original(field, 0.05);
   for (double budget : {0.01, 0.1}) {
     CompressedField stored = field;
     QuantizationBudget asked;
@@ -154,10 +141,25 @@ TEST(WeightPrediction, RoundTripsAnyIntegersWithMissingNeighbours) {
     state = state * 1664525u + 1013904223u;
     q = std::int32_t(state >> 16) % 65535 - 32767;  // the whole range, wrap-around included
   }
-  EXPECT_EQ(unpredict_weights(field, predict_weights(field, integers)), integers);
+  const std::vector<std::uint8_t> every_term(std::size_t(field.clusters) * field.terms, 1);
+  EXPECT_EQ(unpredict_weights(field, predict_weights(field, integers, every_term), every_term),
+            integers);
+  // Terms a cluster does not store have no error and decode as zeros.
+  std::vector<std::uint8_t> some_terms = every_term;
+  some_terms[1] = some_terms[2 * field.terms] = 0;  // cluster 0 term 1, cluster 2 term 0
+  std::vector<std::int32_t> partial = integers;
+  for (std::size_t r = 0; r < field.stored_rows(); ++r)
+    for (int j = 0; j < field.terms; ++j)
+      if (!some_terms[std::size_t(field.cluster[r]) * field.terms + j])
+        partial[r * field.terms + j] = 0;
+  const std::vector<std::uint16_t> fewer = predict_weights(field, partial, some_terms);
+  EXPECT_EQ(fewer.size(), stored_weight_count(field, some_terms));
+  EXPECT_LT(fewer.size(), integers.size());
+  EXPECT_EQ(unpredict_weights(field, fewer, some_terms), partial);
+  EXPECT_THROW(unpredict_weights(field, fewer, every_term), Error);
   // Smooth planes predict well: constant weights leave errors of 0 past the first row.
   std::fill(integers.begin(), integers.end(), 1234);
-  const std::vector<std::uint16_t> errors = predict_weights(field, integers);
+  const std::vector<std::uint16_t> errors = predict_weights(field, integers, every_term);
   std::size_t zero = 0;
   for (std::uint16_t e : errors) zero += e == 0;
   EXPECT_GT(zero, errors.size() * 3 / 4);

@@ -87,6 +87,17 @@ void CommandSuite::make_small_scene() {
               "' --clusters 4 --terms 2 --residual 6");
 }
 
+ReflectanceField noisy_original(const CompressedField& compressed, double noise) {
+  ReflectanceField field = reconstruct_field(compressed);
+  std::uint32_t state = 99;
+  for (std::uint32_t p : compressed.stored_function)
+    for (int i = 0; i < field.lights(); ++i) {
+      state = state * 1664525u + 1013904223u;
+      field.values(p, i) += float(noise * (double(state >> 8) / double(1 << 24) - 0.5));
+    }
+  return field;
+}
+
 double relative_squared_difference(const Image& a, const Image& b) {
   EXPECT_EQ(a.pixels.size(), b.pixels.size());
   double difference = 0, energy = 0;

@@ -1,6 +1,7 @@
 // Helpers shared by the tests: the real-data folder (RELUME_DATA or ../shared/data), a fresh
 // temporary folder per test, running commands and the built `relume` binary, a fixture for
-// suites of commands that share one folder, and the relative difference of two images.
+// suites of commands that share one folder, the relative difference of two images, and a noisy
+// original for a compressed field.
 #pragma once
 
 #include <gmock/gmock.h>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <relume/compressed_field.hpp>
 #include <relume/image.hpp>
 #include <string>
 
@@ -76,6 +78,12 @@ class CommandSuite : public ::testing::Test {
 
 // sum (a - b)^2 / sum b^2 over every pixel and channel (a failure when the sizes differ).
 double relative_squared_difference(const Image& a, const Image& b);
+
+// A field that `compressed` approximates: its reconstruction plus uniform noise of amplitude
+// `noise` on the stored functions (the others stay zero and have no Eq. 16 error), so the
+// compressed field has a known, non-zero error over exactly its stored rows. Seeded: the same
+// arguments give the same field.
+ReflectanceField noisy_original(const CompressedField& compressed, double noise);
 
 // The repository's root folder (for its scripts).
 inline std::filesystem::path source_dir() { return RELUME_SOURCE_DIR; }
