@@ -79,6 +79,7 @@ std::string fingerprint(const std::string& input, const FieldInputOptions& field
       {"clusters", clustering.clusters},
       {"terms", clustering.terms},
       {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
+      {"light_weighting", options.light_weighting},
       {"multires", options.multires_levels},
       {"candidates", clustering.candidates},
       {"min", clustering.sizes.minimum},
@@ -474,6 +475,15 @@ const CommandRegistration registration{
           "--transform", arguments->transform,
           "Basis of the factorization: identity (default) or haar (orthonormal Haar "
           "wavelet over the light order; the residual is sparse in that basis)");
+      command
+          ->add_option(
+              "--light-weighting", options.light_weighting,
+              "Fit each light's image relative to its own energy, as an exponent in [0, 1]: 1 "
+              "fully, 0.5 halfway, 0 not at all (the paper's Eq. 16). Lights that reach the "
+              "object only at grazing angles (a sun behind it) then keep their accuracy: better "
+              "relit images under concentrated or back light, a higher Eq. 16 error and lower "
+              "average PSNR (docs/relit_quality.md); e.g. --light-weighting 0.5")
+          ->capture_default_str();
       command->add_option(
           "--multires", options.multires_levels,
           "Cluster a field downsampled 2x per level first, then assign full-resolution "

@@ -154,6 +154,7 @@ def compress(
     noise_floor: float = -1.0,
     solver: str = "irls",
     transform: str = "identity",
+    light_weighting: float = 0.0,
     multires: int = 0,
     refine: int = 2,
     iterations: int = 4,

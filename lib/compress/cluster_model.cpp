@@ -17,8 +17,11 @@ std::vector<std::vector<std::uint32_t>> ClusterModel::members() const {
 }
 
 PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, float noise_floor,
-                          unsigned threads) {
+                          unsigned threads, const std::vector<float>& light_scale) {
   const int lights = field.lights();
+  if (!light_scale.empty() && (haar_transform || int(light_scale.size()) != lights))
+    throw Error("a light scale needs one value per light (" + std::to_string(lights) +
+                ") and no basis transform");
   const bool masked = !field.mask.empty();
   if (masked && std::int64_t(field.mask.size()) != field.pixels())
     throw Error("field mask has " + std::to_string(field.mask.size()) + " pixels, expected " +
@@ -59,12 +62,14 @@ PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, fl
       for (int c = 0; c < field.channels; ++c)
         haar_forward(prepared.dark.data() + std::size_t(c) * lights, lights, 1);
   }
+  prepared.light_scale = light_scale;
   WorkingRows& rows = prepared.rows;
   rows.values.resize(static_cast<Eigen::Index>(prepared.functions.size()), lights);
   rows.norms.resize(prepared.functions.size());
   parallel_for(prepared.functions.size(), threads, [&](std::size_t r, unsigned) {
     auto out = rows.values.row(static_cast<Eigen::Index>(r));
     out = field.values.row(prepared.functions[r]);
+    for (std::size_t i = 0; i < light_scale.size(); ++i) out[Eigen::Index(i)] /= light_scale[i];
     if (haar_transform) haar_forward(out.data(), lights, 1);
     const double norm = out.cast<double>().norm();
     rows.norms[r] = static_cast<float>(norm);

@@ -41,6 +41,9 @@ struct ClusterModel {
 struct PreparedRows {
   WorkingRows rows;
   std::vector<std::uint32_t> functions;  // working row -> function index p
+  // Light weighting (compress/light_weighting.hpp): the rows are R[p,i] / light_scale[i] before
+  // they are scaled to unit norm; empty: R itself.
+  std::vector<float> light_scale;
   // Pixels inside the mask whose every channel has an RMS over the lights at or below the noise
   // floor: they get no rows, and relight as `dark` (channels x lights, their mean per channel, in
   // the rows' basis).
@@ -49,9 +52,10 @@ struct PreparedRows {
 };
 
 // The functions a compression stores: inside the mask, not all zero, not of a dark pixel (with
-// noise_floor > 0), scaled to unit norm, in the Haar basis if asked. Throws Error naming the
-// function and light of a NaN or Inf value.
+// noise_floor > 0, measured on R itself), divided by `light_scale` per light when it is not
+// empty, scaled to unit norm, in the Haar basis if asked (not together with a light scale).
+// Throws Error naming the function and light of a NaN or Inf value.
 PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, float noise_floor,
-                          unsigned threads);
+                          unsigned threads, const std::vector<float>& light_scale = {});
 
 }  // namespace relume

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <relume/error.hpp>
 
+#include "compress/light_weighting.hpp"
 #include "compress/peak_residual_allocation.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
@@ -47,6 +48,13 @@ void validate_compression_options(const CompressionOptions& options) {
   if (std::isnan(options.noise_floor) || !std::isfinite(options.noise_floor))
     throw Error("noise floor must be a finite value (negative: the field's), got " +
                 std::to_string(options.noise_floor));
+  if (!(options.light_weighting >= 0 && options.light_weighting <= 1))
+    throw Error("the light weighting must be an exponent in [0, 1], got " +
+                std::to_string(options.light_weighting));
+  if (options.light_weighting > 0 && options.transform != BasisTransform::identity)
+    throw Error(
+        "light weighting scales the lights, which the Haar transform mixes: use one of "
+        "--light-weighting and --transform haar");
   validate_size_limits(clustering.sizes, clustering.terms);
   resolve_thread_count(clustering.threads);
   if (options.method == CompressionMethod::cpca &&
@@ -128,7 +136,11 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   out.dark = prepared.dark;
   out.non_negative = (field.values.array() >= 0.0f).all();
   out.cluster.assign(model.assignment.begin(), model.assignment.end());
+  // The model fits the weighted rows R / S: F S is the basis of R (light_weighting.hpp).
+  const std::vector<float>& light_scale = prepared.light_scale;
   out.bases = model.bases;
+  if (!light_scale.empty())
+    for (std::size_t v = 0; v < out.bases.size(); ++v) out.bases[v] *= light_scale[v % lights];
   out.weights.resize(static_cast<Eigen::Index>(rows), terms);
 
   // Residual rows are built in blocks in parallel, then concatenated in order.
@@ -146,6 +158,7 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
     for (std::size_t r = b * block; r < std::min(rows, (b + 1) * block); ++r) {
       const auto original = field.values.row(prepared.functions[r]);
       std::copy(original.data(), original.data() + lights, row.begin());
+      for (std::size_t i = 0; i < light_scale.size(); ++i) row[i] /= light_scale[i];
       if (transform == BasisTransform::haar) haar_forward(row.data(), lights, 1);
       const float norm = prepared.rows.norms[r];
       float* weights = out.weights.row(static_cast<Eigen::Index>(r)).data();
@@ -161,7 +174,16 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
           sparse_counts[b][level] += std::fabs(value) <= sparseness_thresholds[level] * norm;
       }
       const int kept = entries_per_row.empty() ? residual_entries : entries_per_row[r];
-      append_residual_row(row.data(), lights, kept, residual_threshold, part, scratch);
+      if (light_scale.empty()) {
+        append_residual_row(row.data(), lights, kept, residual_threshold, part, scratch);
+        continue;
+      }
+      // Weighted: the largest entries of R / S - W F, the threshold still in field units.
+      for (int i = 0; i < lights; ++i)
+        if (std::fabs(row[i]) * light_scale[i] <= residual_threshold) row[i] = 0;
+      const std::size_t begin = part.values.size();
+      append_residual_row(row.data(), lights, kept, 0.0f, part, scratch);
+      unweight_residual_row(part, begin, light_scale);
     }
   });
   out.residual.row_offsets.reserve(rows + 1);
@@ -194,7 +216,10 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : field.noise_floor;
   stats.residual_threshold =
       options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
-  const PreparedRows prepared = prepare_rows(field, haar, stats.noise_floor, clustering.threads);
+  const PreparedRows prepared = prepare_rows(
+      field, haar, stats.noise_floor, clustering.threads,
+      options.light_weighting > 0 ? light_weighting_scales(field, options.light_weighting)
+                                  : std::vector<float>{});
   stats.functions = field.functions();
   stats.stored_rows = prepared.functions.size();
   stats.dark_pixels = prepared.dark_pixels.size();

@@ -48,6 +48,9 @@ struct CompressionOptions {
   float noise_floor = -1.0f;
   float residual_threshold = -1.0f;
   BasisTransform transform = BasisTransform::identity;
+  // > 0: fit R[p,i] / s_i with s_i = (RMS of light i's image / the largest)^light_weighting, so
+  // that dim lights' errors count (compress/light_weighting.hpp); at most 1, identity basis only.
+  double light_weighting = 0;
   int multires_levels = 0;    // cluster a field downsampled this many times first
   int refine_iterations = 2;  // full-resolution iterations after multi-resolution clustering
 };

@@ -44,6 +44,7 @@ CompressedField compress(const ReflectanceField& field, const CompressOptions& o
   internal.residual_threshold = options.residual_threshold;
   internal.noise_floor = options.noise_floor;
   internal.transform = options.transform;
+  internal.light_weighting = options.light_weighting;
   internal.multires_levels = options.multires_levels;
   internal.refine_iterations = options.refine_iterations;
 

@@ -52,7 +52,8 @@ ClusterModel multires_start(const ReflectanceField& field, const PreparedRows& f
   trace.levels = levels;
   auto start = Clock::now();
   const ReflectanceField low = downsample_field(field, levels);
-  const PreparedRows low_rows = prepare_rows(low, haar_transform, noise_floor, options.threads);
+  const PreparedRows low_rows =
+      prepare_rows(low, haar_transform, noise_floor, options.threads, full.light_scale);
   trace.downsample_seconds = seconds_since(start);
   trace.low_width = low.width;
   trace.low_height = low.height;

@@ -23,7 +23,8 @@ struct MultiresTrace {
 };
 
 // The full-resolution model (bases, assignment, weights) for `full`, the prepared rows of
-// `field`. `haar_transform` and `noise_floor` must match how `full` was prepared.
+// `field`. `haar_transform` and `noise_floor` must match how `full` was prepared; the low
+// resolution is weighted by `full`'s light scale.
 ClusterModel multires_start(const ReflectanceField& field, const PreparedRows& full, int levels,
                             bool haar_transform, float noise_floor,
                             const ClusteringOptions& options, MultiresTrace& trace);

@@ -50,13 +50,13 @@ void bind_compress(py::module_& module) {
       "compress",
       [](py::object field, py::object dirs, py::object mask, py::object intensities, int clusters,
          int terms, py::object residual, float threshold, float noise_floor,
-         const std::string& solver, const std::string& transform, int multires, int refine,
-         int iterations, int candidates, int irls_iterations, std::optional<int> min_cluster_size,
-         int max_cluster_size, std::uint64_t seed, unsigned threads, const std::string& assign,
-         const std::string& device, const std::string& weights_precision,
-         const std::string& residual_precision, const std::string& bases_precision,
-         double quantization_budget, double term_budget, std::optional<double> target_error,
-         bool quiet, py::object progress) {
+         const std::string& solver, const std::string& transform, double light_weighting,
+         int multires, int refine, int iterations, int candidates, int irls_iterations,
+         std::optional<int> min_cluster_size, int max_cluster_size, std::uint64_t seed,
+         unsigned threads, const std::string& assign, const std::string& device,
+         const std::string& weights_precision, const std::string& residual_precision,
+         const std::string& bases_precision, double quantization_budget, double term_budget,
+         std::optional<double> target_error, bool quiet, py::object progress) {
         std::optional<ReflectanceField> from_arrays;
         if (!py::isinstance<ReflectanceField>(field))
           from_arrays = field_from(field, dirs, mask, intensities);
@@ -79,6 +79,7 @@ void bind_compress(py::module_& module) {
         options.transform = one_of("transform", transform, "identity", "haar") == "haar"
                                 ? BasisTransform::haar
                                 : BasisTransform::identity;
+        options.light_weighting = light_weighting;
         options.multires_levels = multires;
         options.refine_iterations = refine;
         options.iterations = iterations;
@@ -115,6 +116,7 @@ void bind_compress(py::module_& module) {
                                              {"residual", budget.describe()},
                                              {"residual_threshold", threshold},
                                              {"transform", transform},
+                                             {"light_weighting", light_weighting},
                                              {"solver", solver},
                                              {"multires_levels", multires},
                                              {"refine_iterations", refine},
@@ -128,12 +130,13 @@ void bind_compress(py::module_& module) {
       "field"_a, "dirs"_a = py::none(), py::kw_only(), "mask"_a = py::none(),
       "intensities"_a = py::none(), "clusters"_a = 64, "terms"_a = 4, "residual"_a = "5%",
       "threshold"_a = -1.0f, "noise_floor"_a = -1.0f, "solver"_a = "irls",
-      "transform"_a = "identity", "multires"_a = 0, "refine"_a = 2, "iterations"_a = 4,
-      "candidates"_a = 3, "irls_iterations"_a = 5, "min_cluster_size"_a = py::none(),
-      "max_cluster_size"_a = 0, "seed"_a = 1, "threads"_a = 0, "assign"_a = "opencl",
-      "device"_a = "", "weights_precision"_a = "quantized", "residual_precision"_a = "quantized",
-      "bases_precision"_a = "quantized", "quantization_budget"_a = 0.01, "term_budget"_a = 0.0,
-      "target_error"_a = py::none(), "quiet"_a = true, "progress"_a = py::none(),
+      "transform"_a = "identity", "light_weighting"_a = 0.0, "multires"_a = 0, "refine"_a = 2,
+      "iterations"_a = 4, "candidates"_a = 3, "irls_iterations"_a = 5,
+      "min_cluster_size"_a = py::none(), "max_cluster_size"_a = 0, "seed"_a = 1, "threads"_a = 0,
+      "assign"_a = "opencl", "device"_a = "", "weights_precision"_a = "quantized",
+      "residual_precision"_a = "quantized", "bases_precision"_a = "quantized",
+      "quantization_budget"_a = 0.01, "term_budget"_a = 0.0, "target_error"_a = py::none(),
+      "quiet"_a = true, "progress"_a = py::none(),
       R"(Compress a reflectance field by clustered sparse residual factorization, as
 `relume compress` does (same options, same defaults, same result for the same seed; the
 command's -o, --report and --resume have no counterpart: save() writes the container).
@@ -149,6 +152,9 @@ model (field units; negative: the field's own, its images' quantization step).
 solver: "irls" (the fast IRLS fits only) or "lp-dual", "lp", "huber": refit every cluster
 exactly with that solver after the iterations.
 transform: "identity" or "haar" (the factorization in an orthonormal Haar basis).
+light_weighting: exponent in [0, 1]; > 0 fits each light's image relative to its own energy
+(0.5 halfway, 1 fully), so that dim lights (a sun behind the object) keep their accuracy, at a
+higher Eq. 16 error (identity transform only).
 multires: cluster a field downsampled 2x per level first, then refine full-resolution
 iterations. iterations: cap on L1 iterations (they stop earlier once fewer than 0.2% of the
 functions change cluster). candidates: clusters given the exact L1 fit per function.
