@@ -54,7 +54,7 @@ struct CompressArguments {
   std::string residual_precision = "quantized";
   std::string bases_precision = "quantized";
   double quantization_budget = QuantizationBudget{}.relative_increase;
-  double term_budget = QuantizationBudget{}.term_increase;
+  std::optional<double> term_budget;  // unset: 0, and a rate target tries 0 and 0.1
   double target_error = 0;
   std::uint64_t target_bytes = 0;
   double target_bytes_per_pixel = 0;
@@ -127,7 +127,7 @@ StoragePrecision storage_precision(const CompressArguments& arguments,
   precision.residual = parse_value_precision(arguments.residual_precision);
   precision.quantize_bases = arguments.bases_precision == "quantized";
   precision.budget = arguments.quantization_budget;
-  precision.term_budget = arguments.term_budget;
+  precision.term_budget = arguments.term_budget.value_or(QuantizationBudget{}.term_increase);
   precision.threads = options.clustering.threads;
   return precision;
 }
@@ -146,6 +146,8 @@ RateTarget rate_target(const CompressArguments& arguments, const ReflectanceFiel
         std::uint64_t(std::floor(arguments.target_bytes_per_pixel * double(field.pixels())));
   target.psnr = arguments.target_psnr;
   target.psnr_white = arguments.psnr_white;
+  target.term_budgets = arguments.term_budget ? std::vector<double>{*arguments.term_budget}
+                                              : std::vector<double>{0.0, 0.1};
   // The whole frame, or the mask: --psnr-mask's, else the field's (an empty region).
   target.region = arguments.target_region == "frame"
                       ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1)
@@ -538,14 +540,13 @@ const CommandRegistration registration{
                        "How much quantization may add to the error (paper Eq. 16) over the "
                        "stored functions, relative (0.01: 1%)")
           ->capture_default_str();
-      command
-          ->add_option("--term-budget", arguments->term_budget,
-                       "With quantized storage, how much dropping the basis terms that "
-                       "clusters of dim or simple functions do not need may add to the error "
-                       "(Eq. 16), relative: the terms that cost the most bytes per error go "
-                       "first (0: every cluster keeps all --terms). Pays on noisy whole frames "
-                       "(docs/compression.md, 'Terms per cluster')")
-          ->capture_default_str();
+      command->add_option(
+          "--term-budget", arguments->term_budget,
+          "With quantized storage, how much dropping the basis terms that clusters of dim or "
+          "simple functions do not need may add to the error (Eq. 16), relative: the terms that "
+          "cost the most bytes per error go first. Default 0 (every cluster keeps all --terms); "
+          "a rate target (--target-bytes, --target-psnr) tries 0 and 0.1 and keeps the better. "
+          "Pays on noisy whole frames (docs/compression.md, 'Terms per cluster')");
       command->add_option(
           "--report", arguments->report,
           "Write a JSON report (times, iterations, bytes, errors, sparseness, memory)");

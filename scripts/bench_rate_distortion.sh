@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
-# Rate-distortion of relume on DiLiGenT data, set against relight-cli's points of issue 11's
-# table: bytes per pixel (file bytes / pixels) against 8-bit PSNR over the whole frame and inside
-# the object's mask, for fixed settings and for the rate targets. The ball is normalised to 8 bit
-# the way RTI tools take it (scripts/normalize_to_8bit.py), once with its mask and once without
-# (the whole frame stored; the mask only measures); pot1 is DiLiGenT's own 8-bit crop.
+# Rate-distortion of relume on DiLiGenT data and a synthetic scene, set against relight-cli's
+# points of issue 11's table: bytes per pixel (file bytes / pixels) against 8-bit PSNR over the
+# whole frame and inside the object's mask, the stored error (Eq. 16) and the relit error, for
+# fixed settings and for the rate targets. The ball is normalised to 8 bit the way RTI tools take
+# it (scripts/normalize_to_8bit.py), once with its mask and once without (the whole frame stored;
+# the mask only measures), and taken as DiLiGenT's 16-bit original; pot1 and harvest are
+# DiLiGenT's 8-bit crops; the synthetic scene is `relume synth` at 256x256, 253 lights.
+# The relit error is the relative squared error of the container relit under Grace Cathedral
+# against the uncompressed field relit under the same light vector (the map turned by `--rotate
+# auto` onto each scene's lights, `relume lights`), inside the mask where there is one.
 #   scripts/bench_rate_distortion.sh [BUILD_DIR] [OUT_DIR]
 # Writes OUT_DIR/rate_distortion.csv and OUT_DIR/rate_distortion.png, one report per point.
+# RD_SCENES="name,name" runs only those scenes (names as in the table, e.g. "harvest mask").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -14,16 +20,23 @@ data="${RELUME_DATA:-../shared/data}"
 relume="$build/apps/relume"
 ball="$data/olat/diligent-ball-16bit"
 pot="$data/olat/diligent-pot1-crop8"
+harvest="$data/olat/diligent-harvest-crop8"
+map="$data/envmaps/grace_cross.hdr"
 mkdir -p "$out"
 [ -d "$out/ball8" ] || /usr/bin/python3 scripts/normalize_to_8bit.py "$ball" "$out/ball8"
 [ -d "$out/ball8_nomask" ] ||
   /usr/bin/python3 scripts/normalize_to_8bit.py "$ball" "$out/ball8_nomask" --no-mask
+[ -f "$out/synth/filenames.txt" ] ||
+  "$relume" -q synth -o "$out/synth" --size 256x256 --lights 253
 
-# scene|input|options every point of the scene gets
+# scene|input|options every point of the scene gets|options reading the field
 scenes=(
-  "ball8 mask|$out/ball8|--linear"
-  "ball8 whole frame|$out/ball8_nomask|--linear --noise-floor 0.03 --psnr-mask $ball/mask.png"
-  "pot1 mask|$pot|"
+  "ball8 mask|$out/ball8|--linear|--linear"
+  "ball8 whole frame|$out/ball8_nomask|--linear --noise-floor 0.03 --psnr-mask $ball/mask.png|--linear"
+  "pot1 mask|$pot||"
+  "ball 16-bit mask|$ball||"
+  "harvest mask|$harvest||"
+  "synthetic 256x256|$out/synth||"
 )
 settings=(
   "--clusters 256 --terms 1 --residual 0"
@@ -32,24 +45,35 @@ settings=(
   "--target-bytes-per-pixel 0.51"
   "--target-bytes-per-pixel 0.93"
 )
-echo "scene,setting,bytes_per_pixel,psnr_whole_frame,psnr_mask,error_masked,seconds" \
+echo "scene,setting,bytes_per_pixel,psnr_whole_frame,psnr_mask,error_masked,relit_error,seconds" \
   >"$out/rate_distortion.csv"
 n=0
 for scene in "${scenes[@]}"; do
-  IFS='|' read -r name input common <<<"$scene"
+  IFS='|' read -r name input common reading <<<"$scene"
+  [ -z "${RD_SCENES:-}" ] || [[ ",$RD_SCENES," == *",$name,"* ]] || continue
+  lights="$out/lights_${name// /_}.txt"
+  reference="$out/reference_${name// /_}.exr"
+  "$relume" lights -q -y --dirs "$input" --env "$map" --rotate auto -o "$lights"
+  # shellcheck disable=SC2086  # the options are words
+  "$relume" relight -q -y "$input" $reading --lights "$lights" -o "$reference"
   for setting in "${settings[@]}"; do
     n=$((n + 1))
     echo "bench_rate_distortion: $name: $setting" >&2
     # shellcheck disable=SC2086  # the options are words
     "$relume" compress -q -y "$input" -o "$out/point$n.relume" $common $setting \
       --report "$out/point$n.json"
-    /usr/bin/python3 - "$out/point$n.json" "$name" "$setting" >>"$out/rate_distortion.csv" <<'EOF'
+    "$relume" relight -q -y "$out/point$n.relume" --lights "$lights" -o "$out/relit$n.exr"
+    "$relume" compare "$out/relit$n.exr" "$reference" --json "$out/compare$n.json" >/dev/null
+    /usr/bin/python3 - "$out/point$n.json" "$out/compare$n.json" "$name" "$setting" \
+      >>"$out/rate_distortion.csv" <<'EOF'
 import json, sys
 r = json.load(open(sys.argv[1]))
+relit = json.load(open(sys.argv[2]))
 p = r["psnr_8bit"]
 db = lambda v: "" if v is None else f"{v:.2f}"  # null: lossless
-print(f'{sys.argv[2]},{sys.argv[3]},{r["bytes_per_pixel"]:.4f},{db(p["whole_frame"])},'
-      f'{db(p["mask"])},{r["error_masked"]:.6f},{r["seconds"]:.1f}')
+print(f'{sys.argv[3]},{sys.argv[4]},{r["bytes_per_pixel"]:.4f},{db(p["whole_frame"])},'
+      f'{db(p["mask"])},{r["error_masked"]:.6f},{relit["relative_squared_error"]:.6f},'
+      f'{r["seconds"]:.1f}')
 EOF
   done
 done

@@ -158,48 +158,61 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   const unsigned threads = options.clustering.threads;
   TargetSearch best;
   std::optional<CurveChoice> best_choice;
+  double best_term_budget = 0;
   nlohmann::ordered_json tried = nlohmann::ordered_json::array();
+  const std::vector<double> term_budgets =
+      quantization ? target.term_budgets : std::vector<double>{0.0};  // float storage: unused
+  if (term_budgets.empty()) throw Error("a rate target needs at least one term budget");
   for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
-    CompressedField stored = grid.full;
-    std::optional<QuantizationChoice> quantized;
-    if (quantization) quantized = quantize_with_budget(field, stored, *quantization);
-    // The weight of each stored row's entries in the ranking.
-    std::vector<double> row_weight(stored.stored_rows(), 1.0);
-    for (std::size_t r = 0; r < row_weight.size(); ++r) {
-      if (target.bytes > 0) {
-        row_weight[r] = 1.0 / grid.energy[r];
-      } else if (!target.region.empty()) {
-        const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
-        row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
+    for (const double term_budget : term_budgets) {
+      CompressedField stored = grid.full;
+      std::optional<QuantizationChoice> quantized;
+      if (quantization) {
+        QuantizationBudget budget = *quantization;
+        budget.term_increase = term_budget;
+        quantized = quantize_with_budget(field, stored, budget);
       }
-    }
-    ContainerOptions planned = container;
-    if (target.parameters_json)
-      planned.parameters_json = target.parameters_json(grid.options, grid.stats);
-    RateCurve curve(field, stored, row_weight, planned, target, threads);
-    const CurveChoice choice =
-        target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
-    nlohmann::ordered_json points = nlohmann::ordered_json::array();
-    for (const RatePoint& point : curve.points()) points.push_back(to_json(point, target.psnr > 0));
-    tried.push_back({{"terms", grid.options.clustering.terms},
-                     {"clusters", stored.clusters},
-                     {"met", choice.met},
-                     {"choice", to_json(choice.point, target.psnr > 0)},
-                     {"points", points}});
-    if (!options.clustering.quiet)
-      std::fprintf(
-          stderr, "compress: rate target: %d terms, %d clusters -> %llu bytes, error %.5f%s%s\n",
-          grid.options.clustering.terms, stored.clusters,
-          static_cast<unsigned long long>(choice.point.bytes), choice.point.error,
-          target.psnr > 0 ? (", " + std::to_string(choice.point.psnr) + " dB").c_str() : "",
-          choice.met ? "" : " (target not met)");
-    if (!best_choice || better(choice, *best_choice, target)) {
-      best_choice = choice;
-      best.field = curve.at(choice.point.entries);
-      best.quantization = quantized;
-      best.options = grid.options;
-      stats = grid.stats;
-      stats.residual_nonzeros = best.field.residual.nonzeros();
+      // The weight of each stored row's entries in the ranking.
+      std::vector<double> row_weight(stored.stored_rows(), 1.0);
+      for (std::size_t r = 0; r < row_weight.size(); ++r) {
+        if (target.bytes > 0) {
+          row_weight[r] = 1.0 / grid.energy[r];
+        } else if (!target.region.empty()) {
+          const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
+          row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
+        }
+      }
+      ContainerOptions planned = container;
+      if (target.parameters_json)
+        planned.parameters_json = target.parameters_json(grid.options, grid.stats);
+      RateCurve curve(field, stored, row_weight, planned, target, threads);
+      const CurveChoice choice =
+          target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
+      nlohmann::ordered_json points = nlohmann::ordered_json::array();
+      for (const RatePoint& point : curve.points())
+        points.push_back(to_json(point, target.psnr > 0));
+      tried.push_back({{"terms", grid.options.clustering.terms},
+                       {"clusters", stored.clusters},
+                       {"term_budget", term_budget},
+                       {"met", choice.met},
+                       {"choice", to_json(choice.point, target.psnr > 0)},
+                       {"points", points}});
+      if (!options.clustering.quiet)
+        std::fprintf(
+            stderr, "compress: rate target: %d terms, %d clusters -> %llu bytes, error %.5f%s%s\n",
+            grid.options.clustering.terms, stored.clusters,
+            static_cast<unsigned long long>(choice.point.bytes), choice.point.error,
+            target.psnr > 0 ? (", " + std::to_string(choice.point.psnr) + " dB").c_str() : "",
+            choice.met ? "" : " (target not met)");
+      if (!best_choice || better(choice, *best_choice, target)) {
+        best_choice = choice;
+        best.field = curve.at(choice.point.entries);
+        best.quantization = quantized;
+        best.options = grid.options;
+        best_term_budget = term_budget;
+        stats = grid.stats;
+        stats.residual_nonzeros = best.field.residual.nonzeros();
+      }
     }
   });
   nlohmann::ordered_json goal;
@@ -225,6 +238,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       {"chosen",
        {{"terms", best.options.clustering.terms},
         {"clusters", best.field.clusters},
+        {"term_budget", best_term_budget},
         {"point",
          best_choice ? to_json(best_choice->point, target.psnr > 0) : nlohmann::ordered_json()}}}};
   return best;

@@ -4,7 +4,8 @@
 // the budget by default). Its residual entries are ranked by the error each removes (Eq. 16's
 // e^2 / ||R[p,:]||^2 for a byte target; e^2 inside the PSNR region for a PSNR target), and the
 // number kept is found by bisection: the most entries whose container fits the bytes, or the
-// fewest whose 8-bit PSNR reaches the target. Of the pairs that meet the target, the lowest
+// fewest whose 8-bit PSNR reaches the target; with several term budgets, each pair is stored and
+// measured with each. Of the pairs that meet the target, the lowest
 // error (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the
 // explanation says so. Every rate-distortion point tried is in the explanation.
 #pragma once
@@ -24,6 +25,9 @@ struct RateTarget {
   double psnr_white = 1.0;  // the field value that is 255 for the PSNR
   // width * height, non-zero where the PSNR is measured; empty: the field's mask.
   std::vector<std::uint8_t> region;
+  // With quantized storage, each candidate is stored with each of these term budgets
+  // (QuantizationBudget::term_increase, model/cluster_terms.hpp) and the best of them counts.
+  std::vector<double> term_budgets{0.0};
   // The parameter record the caller's container will carry (ContainerOptions::parameters_json)
   // for a candidate's options and statistics, so that the bytes measured are the file's.
   std::function<std::string(const CompressionOptions&, const CompressionStats&)> parameters_json;

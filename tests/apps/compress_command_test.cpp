@@ -277,6 +277,14 @@ TEST(CompressCommand, TargetBytesFitsWithTheLowestErrorOfThePairsTried) {
       EXPECT_LE(tried["choice"]["bytes"].get<std::uint64_t>(), budget);
       EXPECT_GE(tried["choice"]["error_masked"].get<double>(), chosen_error);
     }
+  // Without --term-budget every pair is stored with term budgets 0 and 0.1; with it, only so.
+  std::set<double> term_budgets;
+  for (const auto& tried : choice["tried"]) term_budgets.insert(tried["term_budget"].get<double>());
+  EXPECT_EQ(term_budgets, (std::set<double>{0.0, 0.1}));
+  const nlohmann::json given =
+      compress("given", "--target-bytes " + std::to_string(budget) + " --term-budget 0.05");
+  for (const auto& tried : given["rate_target"]["tried"])
+    EXPECT_EQ(tried["term_budget"].get<double>(), 0.05);
 }
 
 // --target-psnr: the PSNR of the file as written reaches the target with the fewest bytes of the
