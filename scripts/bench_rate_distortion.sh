@@ -63,7 +63,7 @@ for scene in "${scenes[@]}"; do
     "$relume" compress -q -y "$input" -o "$out/point$n.relume" $common $setting \
       --report "$out/point$n.json"
     "$relume" relight -q -y "$out/point$n.relume" --lights "$lights" -o "$out/relit$n.exr"
-    "$relume" compare "$out/relit$n.exr" "$reference" --json "$out/compare$n.json" >/dev/null
+    "$relume" compare -y "$out/relit$n.exr" "$reference" --json "$out/compare$n.json" >/dev/null
     /usr/bin/python3 - "$out/point$n.json" "$out/compare$n.json" "$name" "$setting" \
       >>"$out/rate_distortion.csv" <<'EOF'
 import json, sys
