@@ -1,7 +1,8 @@
 // `relume decompress`: reconstructs the reflectance field a .relume container stands for
 // (W F + the residual, optionally cut to N entries per function, back in the light basis) and
 // writes it as a field folder that `relume` reads again: one EXR per light, filenames.txt,
-// light_directions.txt, light_intensities.txt and mask.png.
+// light_directions.txt, light_intensities.txt and mask.png, strip by strip of scanlines so that
+// the float32 field is never whole in memory.
 #include <cstdio>
 #include <memory>
 #include <relume/field.hpp>
@@ -11,7 +12,7 @@
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/memory_budget.hpp"
-#include "model/reconstruct_field.hpp"
+#include "model/reconstructed_folder.hpp"
 #include "output_paths.hpp"
 
 namespace relume {
@@ -26,21 +27,21 @@ struct DecompressOptions {
 void run_decompress(const DecompressOptions& options) {
   check_output_folder(options.output);
   const CompressedField compressed = read_container(options.input);
-  check_memory_need(
-      std::uint64_t(compressed.functions()) * std::uint64_t(compressed.lights) * sizeof(float),
-      "decompressing " + options.input + " (the float32 field, " +
-          std::to_string(compressed.functions()) + " functions x " +
-          std::to_string(compressed.lights) + " lights)");
-  const ReflectanceField field = reconstruct_field(compressed, options.residual);
-  // Into a temporary folder renamed at the end: a failure (a full disk) exposes nothing.
-  write_folder_atomically(
-      options.output, [&](const std::filesystem::path& temp) { write_field_folder(temp, field); });
+  check_memory_need(reconstructed_folder_memory(compressed),
+                    "decompressing " + options.input + " (one strip of pixels under all " +
+                        std::to_string(compressed.lights) + " lights at a time)");
+  // Strip by strip into a temporary folder renamed at the end: a failure (a full disk) exposes
+  // nothing, and the float32 field is never whole in memory.
+  write_folder_atomically(options.output, [&](const std::filesystem::path& temp) {
+    write_reconstructed_folder(temp, compressed, options.residual);
+  });
   const std::string residual =
       options.residual == all_residual_entries
           ? "complete"
           : "cut to " + std::to_string(options.residual) + " entries per function";
   say("wrote %s: %d x %d pixels, %d channels, %d lights, residual %s", options.output.c_str(),
-      field.width, field.height, field.channels, field.lights(), residual.c_str());
+      compressed.width, compressed.height, compressed.channels, compressed.lights,
+      residual.c_str());
 }
 
 const CommandRegistration registration{

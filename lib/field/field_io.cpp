@@ -4,9 +4,9 @@
 #include <relume/error.hpp>
 #include <relume/field.hpp>
 
-#include "core/atomic_file.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
+#include "field/field_folder_writer.hpp"
 #include "field/field_source.hpp"
 #include "field/input_encoding.hpp"
 #include "field/light_file.hpp"
@@ -18,12 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 
 int field_channels(int image_channels) { return image_channels >= 3 ? 3 : 1; }
-
-// The intensity a channel of light i was divided by: its own for RGB, the mean for grey fields.
-float channel_intensity(const ReflectanceField& field, int light, int channel) {
-  return field.channels == 1 ? field.intensities.row(light).mean()
-                             : field.intensities(light, channel);
-}
 
 void check_finite(const Image& image, const fs::path& path) {
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -73,15 +67,17 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
                   std::to_string(first.channels));
     check_finite(image, source.images[i]);
     float scale[3];
-    for (int c = 0; c < field.channels; ++c) scale[c] = 1.0f / channel_intensity(field, i, c);
+    for (int c = 0; c < field.channels; ++c)
+      scale[c] = 1.0f / channel_intensity(field.intensities, field.channels, int(i), c);
     for (std::int64_t p = 0; p < field.pixels(); ++p)
       for (int c = 0; c < field.channels; ++c) {
         const float value = image.pixels[p * image.channels + c] * scale[c];
         if (!std::isfinite(value))
-          throw Error("image " + source.images[i].string() + " divided by its light intensity " +
-                      std::to_string(channel_intensity(field, int(i), c)) +
-                      " overflows float32 at pixel (" + std::to_string(p % field.width) + ", " +
-                      std::to_string(p / field.width) + ") channel " + std::to_string(c));
+          throw Error(
+              "image " + source.images[i].string() + " divided by its light intensity " +
+              std::to_string(channel_intensity(field.intensities, field.channels, int(i), c)) +
+              " overflows float32 at pixel (" + std::to_string(p % field.width) + ", " +
+              std::to_string(p / field.width) + ") channel " + std::to_string(c));
         field.values(p * field.channels + c, i) = value;
       }
     if (options.image_loaded) options.image_loaded();
@@ -100,31 +96,15 @@ ReflectanceField load_field(const fs::path& path, const FieldLoadOptions& option
 }
 
 void write_field_folder(const fs::path& folder, const ReflectanceField& field) {
-  fs::create_directories(folder);
-  const int lights = field.lights();
-  const int digits = std::max(3, static_cast<int>(std::to_string(lights).size()));
-  std::vector<std::string> image_names(lights);
-  for (int i = 0; i < lights; ++i) {
-    const std::string number = std::to_string(i + 1);
-    image_names[i] = std::string(digits - number.size(), '0') + number + ".exr";
-  }
-  parallel_for(lights, 0, [&](std::size_t i, unsigned) {
-    Image image(field.width, field.height, field.channels);
-    for (std::int64_t p = 0; p < field.pixels(); ++p)
-      for (int c = 0; c < field.channels; ++c)
-        image.pixels[p * field.channels + c] =
-            field.values(p * field.channels + c, i) * channel_intensity(field, int(i), c);
-    write_image(folder / image_names[i], image);
-  });
-  std::string names;
-  for (const auto& name : image_names) names += name + "\n";
-  write_rgb_rows(folder / "light_directions.txt", field.directions, "");
-  write_rgb_rows(folder / "light_intensities.txt", field.intensities, "");
-  Image mask(field.width, field.height, 1);
-  for (std::size_t p = 0; p < field.mask.size(); ++p) mask.pixels[p] = field.mask[p] ? 1.0f : 0.0f;
-  write_image(folder / "mask.png", mask);
-  // The index goes last, so an interrupted write leaves no filenames.txt behind it.
-  write_file_atomically(folder / "filenames.txt", names);
+  const FieldFolderLayout layout{field.width,      field.height,      field.channels,
+                                 field.directions, field.intensities, field.mask};
+  const std::int64_t row_functions = std::int64_t(field.width) * field.channels;
+  write_field_folder_in_strips(
+      folder, layout, [&](int first_row, int rows, int first_light, int lights, float* values) {
+        for (int l = 0; l < lights; ++l)
+          for (std::int64_t v = 0; v < rows * row_functions; ++v)
+            *values++ = field.values(first_row * row_functions + v, first_light + l);
+      });
 }
 
 }  // namespace relume

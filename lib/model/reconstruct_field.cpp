@@ -11,13 +11,14 @@
 #include "model/haar_transform.hpp"
 
 namespace relume {
-namespace {
 
 void check_residual_cap(int residual_cap) {
   if (residual_cap < all_residual_entries)
     throw Error("residual cap " + std::to_string(residual_cap) +
                 " is invalid: expected -1 (all entries) or a count >= 0");
 }
+
+namespace {
 
 // sum[i] = (W[row,:] F^{c(row)})[i] + the row's first `residual_cap` residual entries, in double.
 void accumulate_stored_row(const CompressedField& field, std::size_t row, int residual_cap,
