@@ -45,6 +45,9 @@ float channel_intensity(const LightRgb& intensities, int channels, int light, in
 
 void write_field_folder_in_strips(const fs::path& folder, const FieldFolderLayout& layout,
                                   const FieldStripFill& fill, const StripLimits& limits) {
+  if (layout.channels != 1 && layout.channels != 3)
+    throw Error("cannot write a field folder of " + std::to_string(layout.channels) +
+                " channels: its light intensities are RGB, for 1 or 3 channels");
   fs::create_directories(folder);
   const int lights = int(layout.directions.rows());
   const std::vector<std::string> names = image_names(lights);
@@ -67,10 +70,12 @@ void write_field_folder_in_strips(const fs::path& folder, const FieldFolderLayou
       fill(first_row, rows, first_light, count, values.data());
       parallel_for(std::size_t(count), 0, [&](std::size_t l, unsigned) {
         float* image = values.data() + l * rows * row_values;
-        const int light = first_light + int(l);
+        std::vector<float> intensity(layout.channels);
+        for (int c = 0; c < layout.channels; ++c)
+          intensity[c] =
+              channel_intensity(layout.intensities, layout.channels, first_light + int(l), c);
         for (std::size_t v = 0; v < rows * row_values; ++v)
-          image[v] *= channel_intensity(layout.intensities, layout.channels, light,
-                                        int(v % layout.channels));
+          image[v] *= intensity[v % layout.channels];
         writers[l]->write_rows(first_row, rows, image);
       });
     }

@@ -14,7 +14,7 @@ std::size_t reconstructed_folder_memory(const CompressedField& field) {
   // One strip of values (field_folder_writer.hpp), at least one whole row of pixels.
   const std::size_t row = std::size_t(field.width) * field.channels * field.lights * sizeof(float);
   return std::max<std::size_t>(StripLimits{}.strip_bytes, row) +
-         stored_row_of_function(field).size() * sizeof(std::int64_t);
+         std::size_t(field.functions()) * sizeof(std::int64_t);
 }
 
 void write_reconstructed_folder(const std::filesystem::path& folder, const CompressedField& field,

@@ -72,6 +72,12 @@ TEST(ReconstructedFolder, AnInterruptionLeavesNoIndex) {
   clear_interruption();
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "filenames.txt"));
   EXPECT_THROW(write_reconstructed_folder(dir / "bad", field, -2), Error);
+  FieldFolderLayout four{1, 1, 4, LightDirections::Ones(2, 3), LightRgb::Ones(2, 3), {1}};
+  EXPECT_THAT(testing::error_message([&] {
+                write_field_folder_in_strips(dir / "four", four, [](int, int, int, int, float*) {});
+              }),
+              ::testing::HasSubstr("field folder of 4 channels"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "four"));
 }
 
 }  // namespace
