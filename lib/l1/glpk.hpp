@@ -7,6 +7,7 @@
 
 #include <glpk.h>
 
+#include <functional>
 #include <string>
 
 namespace relume {
@@ -20,11 +21,19 @@ class GlpkProblem {
 
   glp_prob* get() const { return problem_; }
 
+  // How a solve starts from nothing: the basis to set and the simplex method to run from it.
+  struct ColdStart {
+    std::function<void()> set_basis;
+    int method;
+  };
+
   // Runs the simplex method (GLP_PRIMAL, GLP_DUALP, ...) from the current basis with presolving
-  // off, so the basis of the previous solve is the warm start. When that fails, or ends without an
-  // optimum, it retries once from the standard basis. Returns the final glp_get_status; throws
-  // Error (naming `what`) when GLPK itself fails twice.
-  int simplex(int method, const std::string& what);
+  // off, so the basis of the previous solve is the warm start, within a bound on the iterations.
+  // When that fails, runs out of iterations (GLPK can cycle on these degenerate LPs) or ends
+  // without an optimum, it retries once from `cold`, the start a first solve uses, with the
+  // textbook ratio test instead of Harris' (glpk.cpp says why). Returns the
+  // final glp_get_status; throws Error (naming `what`) when GLPK itself fails twice.
+  int simplex(int method, const ColdStart& cold, const std::string& what);
 
  private:
   glp_prob* problem_;

@@ -16,7 +16,9 @@ namespace {
 class LpDualMethod final : public LadMethod {
  public:
   LpDualMethod(const Eigen::MatrixXd& design, bool nonnegative_residual)
-      : observations_(static_cast<int>(design.rows())), unknowns_(static_cast<int>(design.cols())) {
+      : observations_(static_cast<int>(design.rows())),
+        unknowns_(static_cast<int>(design.cols())),
+        nonnegative_residual_(nonnegative_residual) {
     glp_prob* lp = problem_.get();
     glp_set_obj_dir(lp, GLP_MAX);
     glp_add_rows(lp, unknowns_);
@@ -44,8 +46,10 @@ class LpDualMethod final : public LadMethod {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
     glp_prob* lp = problem_.get();
     for (int i = 0; i < observations_; ++i) glp_set_obj_coef(lp, i + 1, rhs[i]);
-    const int status = problem_.simplex(GLP_PRIMAL, "L1 regression (lp-dual)");
-    if (status == GLP_UNBND)
+    // A new problem starts from the standard basis (rows basic, every d at a bound).
+    const GlpkProblem::ColdStart cold{[lp] { glp_std_basis(lp); }, GLP_PRIMAL};
+    const int status = problem_.simplex(GLP_PRIMAL, cold, "L1 regression (lp-dual)");
+    if (status == GLP_UNBND && nonnegative_residual_)
       throw Error(
           "L1 regression (lp-dual) with a non-negative residual has no solution: no x gives "
           "b - A x >= 0 for this right-hand side (it has entries that the design cannot go under)");
@@ -61,6 +65,7 @@ class LpDualMethod final : public LadMethod {
   GlpkProblem problem_;
   int observations_;
   int unknowns_;
+  bool nonnegative_residual_;
 };
 
 }  // namespace

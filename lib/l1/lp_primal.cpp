@@ -56,10 +56,11 @@ class LpPrimalMethod final : public LadMethod {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
     glp_prob* lp = problem_.get();
     for (int i = 0; i < observations_; ++i) glp_set_row_bnds(lp, i + 1, GLP_FX, rhs[i], rhs[i]);
-    if (!solved_once_) set_residual_basis(rhs);
-    const int method = solved_once_ ? GLP_DUALP : GLP_PRIMAL;
-    const int status = problem_.simplex(method, "L1 regression (lp)");
-    if (status == GLP_NOFEAS)
+    const GlpkProblem::ColdStart cold{[&] { set_residual_basis(rhs); }, GLP_PRIMAL};
+    if (!solved_once_) cold.set_basis();
+    const int method = solved_once_ ? GLP_DUALP : cold.method;
+    const int status = problem_.simplex(method, cold, "L1 regression (lp)");
+    if (status == GLP_NOFEAS && nonnegative_residual_)
       throw Error(
           "L1 regression (lp) with a non-negative residual has no solution: no x gives "
           "b - A x >= 0 for this right-hand side (it has entries that the design cannot go under)");
@@ -76,7 +77,8 @@ class LpPrimalMethod final : public LadMethod {
   int positive_part(int i) const { return unknowns_ + 1 + i; }
   int negative_part(int i) const { return unknowns_ + 1 + observations_ + i; }
 
-  // The basis of x = 0: every row's residual part that carries b_i is basic, x is non-basic free.
+  // The basis of x = 0, primal feasible: every row's residual part that carries b_i is basic, x is
+  // non-basic free.
   void set_residual_basis(const Eigen::VectorXd& rhs) {
     glp_prob* lp = problem_.get();
     for (int i = 1; i <= observations_; ++i) glp_set_row_stat(lp, i, GLP_NS);

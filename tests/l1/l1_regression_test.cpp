@@ -1,15 +1,19 @@
 // Tests of the L1 (least absolute deviations) regression solvers: both exact LP forms against a
 // brute-force vertex search and each other, the Huber QP's approach to the L1 optimum as gamma
-// shrinks, the IRLS gap, the non-negative residual, the batched solve, and degenerate inputs.
+// shrinks, the IRLS gap, the non-negative residual, the batched solve, degenerate inputs, and a
+// captured problem on which GLPK's default ratio test never finishes.
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <string>
 #include <relume/error.hpp>
 
 #include "l1/regression.hpp"
+#include "support/test_support.hpp"
 
 namespace relume {
 namespace {
@@ -121,6 +125,30 @@ TEST(L1Regression, PrimalAndWarmStartedDualAgreeOverManyRightHandSides) {
     primal.solve(rhs.col(k), &primal_objective);
     dual.solve(rhs.col(k), &dual_objective);
     EXPECT_NEAR(primal_objective, dual_objective, 1e-6 * primal_objective) << "column " << k;
+  }
+}
+
+TEST(L1Regression, ProblemWhereHarrisRatioTestStallsIsSolvedToTheOptimum) {
+  std::ifstream file(testing::source_dir() / "tests/l1/data/harris_stall_lp.txt");
+  ASSERT_TRUE(file) << "tests/l1/data/harris_stall_lp.txt";
+  std::string comment;
+  while (file.peek() == '#') std::getline(file, comment);
+  Eigen::Index rows = 0, cols = 0;
+  file >> rows >> cols;
+  ASSERT_EQ(rows, 50);
+  ASSERT_EQ(cols, 3);
+  Eigen::MatrixXd design(rows, cols);
+  Eigen::VectorXd rhs(rows);
+  for (Eigen::Index i = 0; i < rows; ++i)
+    for (Eigen::Index j = 0; j < cols; ++j) file >> design(i, j);
+  for (Eigen::Index i = 0; i < rows; ++i) file >> rhs[i];
+  ASSERT_TRUE(file) << "the file ended early";
+  const double optimum = brute_force_l1(design, rhs);
+  for (L1Method method : {L1Method::lp_primal, L1Method::lp_dual}) {
+    LadSolver solver(design, options_for(method));
+    double objective = 0;
+    solver.solve(rhs, &objective);
+    EXPECT_NEAR(objective, optimum, 1e-9 * optimum) << to_string(method);
   }
 }
 
