@@ -52,8 +52,7 @@ int GlpkProblem::simplex(int method, const ColdStart& cold, const std::string& w
   cold.set_basis();
   code = run_simplex(problem_, cold.method, GLP_RT_STD);
   if (code == GLP_EITLIM)
-    throw Error(what + ": GLPK's simplex ran past " +
-                std::to_string(kIterationsPerDimension) +
+    throw Error(what + ": GLPK's simplex ran past " + std::to_string(kIterationsPerDimension) +
                 " iterations per row and column twice, the last time from a cold start");
   if (code != 0)
     throw Error(what + ": GLPK's simplex failed twice (glp_simplex code " + std::to_string(code) +

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <fstream>
 #include <random>
-#include <string>
 #include <relume/error.hpp>
+#include <string>
 
 #include "l1/regression.hpp"
 #include "support/test_support.hpp"
