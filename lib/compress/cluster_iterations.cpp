@@ -33,9 +33,14 @@ std::size_t reassign(const WorkingRows& rows, ClusterModel& model, const Cluster
   auto start = Clock::now();
   CandidateOptions candidate_options;
   candidate_options.count = options.candidates;
-  candidate_options.always_include = &model.assignment;
+  const bool assigned = !model.assignment.empty();
+  if (assigned) candidate_options.always_include = &model.assignment;
   const CandidateLists candidates =
       nearest_subspace_candidates(rows, model, candidate_options, options.threads);
+  // Seeded without an assignment: it is the nearest subspace, each list's first (the seeding's
+  // last least-squares assignment, made here instead of in a pass of its own).
+  if (!assigned)
+    for (std::size_t r = 0; r < rows.rows(); ++r) model.assignment.push_back(candidates.row(r)[0]);
   trace.candidate_seconds += seconds_since(start);
 
   start = Clock::now();
@@ -162,7 +167,7 @@ void iterate_clusters(const WorkingRows& rows, ClusterModel& model,
 }
 
 ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions& options,
-                               ClusteringTrace& trace) {
+                               ClusteringTrace& trace, bool assign) {
   const auto start = Clock::now();
   SeedingOptions seeding;
   seeding.clusters = options.clusters;
@@ -171,6 +176,7 @@ ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions&
   seeding.l2_rounds = options.l2_rounds;
   seeding.seed = options.seed;
   seeding.threads = options.threads;
+  seeding.assign_after_rounds = assign;
   ClusterModel model = seed_clusters(rows, seeding);
   trace.seeding_seconds += seconds_since(start);
   return model;
@@ -178,7 +184,7 @@ ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions&
 
 ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& options,
                           ClusteringTrace& trace, const IterationHook& hook) {
-  ClusterModel model = seed_clusters_for(rows, options, trace);
+  ClusterModel model = seed_clusters_for(rows, options, trace, false);
   iterate_clusters(rows, model, options, options.max_iterations, trace, hook);
   return model;
 }

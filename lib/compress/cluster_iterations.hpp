@@ -67,16 +67,18 @@ struct ClusteringTrace {
 using IterationHook = std::function<void(const ClusterModel& model, const IterationRecord&)>;
 
 // Seeds clusters with the seeding settings of `options` (lib/compress/cluster_seeding.hpp),
-// adding the time to trace.seeding_seconds.
+// adding the time to trace.seeding_seconds. Without `assign`, the model's assignment is left
+// empty for iterate_clusters' first preselection to make.
 ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions& options,
-                               ClusteringTrace& trace);
+                               ClusteringTrace& trace, bool assign = true);
 
 // Seeds clusters (seed_clusters_for) and runs the iterations.
 ClusterModel cluster_rows(const WorkingRows& rows, const ClusteringOptions& options,
                           ClusteringTrace& trace, const IterationHook& hook = {});
 
-// Runs up to `iterations` iterations from `model` (bases and assignment set; weights are fitted
-// first when they do not cover every row). Then the exact refit, if asked for.
+// Runs up to `iterations` iterations from `model` (bases set; weights are fitted first when they
+// do not cover every row, and an empty assignment starts as every row's nearest subspace). Then
+// the exact refit, if asked for.
 void iterate_clusters(const WorkingRows& rows, ClusterModel& model,
                       const ClusteringOptions& options, int iterations, ClusteringTrace& trace,
                       const IterationHook& hook = {});

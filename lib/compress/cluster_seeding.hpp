@@ -17,12 +17,17 @@ struct SeedingOptions {
   int terms = 4;
   int sample_rows = 20000;  // rows the seeds are chosen from
   int l2_rounds = 4;        // least-squares k-subspace rounds over all rows
+  // After the last round, assign every row to its nearest subspace. Off for the L1 iterations:
+  // their first candidate preselection projects every row on the same bases anyway and takes the
+  // nearest as the assignment (cluster_iterations.cpp), so the pass would be done twice.
+  bool assign_after_rounds = true;
   std::uint64_t seed = 1;
   unsigned threads = 0;
 };
 
-// Bases (orthonormal rows) and the least-squares assignment; weights are left empty. Fewer
-// clusters than asked are returned only when there are fewer rows than clusters.
+// Bases (orthonormal rows) and the least-squares assignment (empty without
+// assign_after_rounds); weights are left empty. Fewer clusters than asked are returned only when
+// there are fewer rows than clusters.
 ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& options);
 
 }  // namespace relume

@@ -1,6 +1,6 @@
 // Tests of clustered sparse residual factorization: planted clusters are recovered to near
 // exactness, the full residual is lossless, masked and all-zero functions cost nothing, the Haar
-// basis round-trips, and the size rules merge and split clusters.
+// basis round-trips, the size rules merge and split clusters, and the thread count changes nothing.
 #include "compress/clustered_factorization.hpp"
 
 #include <gtest/gtest.h>
@@ -95,6 +95,31 @@ TEST(ClusteredFactorization, RecoversPlantedClustersWithTheirSparseResidual) {
   const RelativeError error = relative_error(planted.field, compressed, false);
   EXPECT_LT(error.mean, 1e-4) << "after " << stats.clustering.iterations.size() << " iterations";
   EXPECT_NO_THROW(validate_compressed_field(compressed, "planted"));
+}
+
+TEST(ClusteredFactorization, SameResultOnAnyThreadCount) {
+  // Noise keeps the clustering from being trivial; 300 lights make seeding's projections of the
+  // sample run in more than one block of rows.
+  PlantedField planted = planted_field(40, 30, 6, 3, 300, 4, 13);
+  std::mt19937_64 random(5);
+  std::normal_distribution<float> normal(0.0f, 0.05f);
+  for (std::int64_t p = 0; p < planted.field.values.size(); ++p)
+    planted.field.values.data()[p] += normal(random);
+  const auto compress_on = [&](unsigned threads) {
+    CompressionOptions options = options_for(6, 3, 4);
+    options.clustering.threads = threads;
+    CompressionStats stats;
+    return compress_field(planted.field, options, stats);
+  };
+  const CompressedField one = compress_on(1);
+  ASSERT_EQ(one.clusters, 6);
+  for (unsigned threads : {2u, 3u}) {
+    const CompressedField many = compress_on(threads);
+    EXPECT_EQ(many.cluster, one.cluster) << threads << " threads";
+    EXPECT_EQ(many.bases, one.bases) << threads << " threads";
+    EXPECT_EQ(many.weights, one.weights) << threads << " threads";
+    EXPECT_EQ(many.residual.values, one.residual.values) << threads << " threads";
+  }
 }
 
 TEST(ClusteredFactorization, FullResidualIsLossless) {
