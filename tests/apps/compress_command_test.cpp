@@ -304,8 +304,11 @@ TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
   EXPECT_GE(report["psnr_8bit"]["mask"].get<double>(), target);
   const std::uint64_t bytes = std::filesystem::file_size(dir / "p.relume");
   EXPECT_EQ(choice["chosen"]["point"]["bytes"].get<std::uint64_t>(), bytes);
-  for (const auto& tried : choice["tried"])
-    if (tried["met"].get<bool>()) EXPECT_GE(tried["choice"]["bytes"].get<std::uint64_t>(), bytes);
+  for (const auto& tried : choice["tried"]) {
+    if (tried["met"].get<bool>()) {
+      EXPECT_GE(tried["choice"]["bytes"].get<std::uint64_t>(), bytes);
+    }
+  }
 
   // The default region is the whole frame: the unstored half of small_field counts as lost, so
   // the same target needs more than the mask's PSNR can give and is missed.

@@ -77,7 +77,9 @@ TEST(LightWeighting, ScalesFollowTheLightsRmsToTheExponent) {
         std::sqrt(field.values.col(i).cast<double>().squaredNorm() / double(field.functions()));
     EXPECT_NEAR(half[i], std::sqrt(full[i]), 1e-6) << i;
     largest = std::max(largest, full[i]);
-    if (i >= 12) EXPECT_LT(full[i], 0.05f) << "dim light " << i << " rms " << rms;
+    if (i >= 12) {
+      EXPECT_LT(full[i], 0.05f) << "dim light " << i << " rms " << rms;
+    }
   }
   EXPECT_FLOAT_EQ(largest, 1.0f);
   EXPECT_EQ(light_weighting_scales(field, 0.0), std::vector<float>(24, 1.0f));
