@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/progress.hpp"
+#include "field/field_folder_writer.hpp"
 #include "output_paths.hpp"
 #include "synth/synthetic_scene.hpp"
 
@@ -48,19 +49,33 @@ void run_synth(const SynthArguments& arguments) {
   validate_synth_options(options);
   check_output_folder(arguments.output);
 
-  ProgressReporter progress("synth: rendering", std::uint64_t(options.height));
-  const ReflectanceField field = render_synthetic_field(options, &progress);
-  progress.finish();
-  const double render_seconds = progress.elapsed_seconds();
-
-  note("synth: writing %d EXR images to %s", options.lights, arguments.output.c_str());
-  const auto write_start = std::chrono::steady_clock::now();
+  // Rendered and written strip by strip: the field need not fit in memory.
+  const SyntheticRenderer renderer(options);
+  const ReflectanceField& header = renderer.header();
+  const FieldFolderLayout layout{header.width,      header.height,      header.channels,
+                                 header.directions, header.intensities, header.mask};
+  note("synth: rendering and writing %d EXR images to %s", options.lights,
+       arguments.output.c_str());
+  ProgressReporter progress("synth: rendering and writing", std::uint64_t(options.height));
+  double render_seconds = 0;
+  const auto start = std::chrono::steady_clock::now();
   // Into a temporary folder renamed at the end: a failure (a full disk) exposes nothing.
   write_folder_atomically(arguments.output, [&](const std::filesystem::path& temp) {
-    write_field_folder(temp, field);
+    write_field_folder_in_strips(
+        temp, layout, [&](int first_row, int rows, int first_light, int lights, float* values) {
+          const auto render_start = std::chrono::steady_clock::now();
+          const ReflectanceField strip = renderer.render_rows(first_row, rows);
+          render_seconds +=
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start)
+                  .count();
+          fill_strip_from(strip, first_row, first_row, rows, first_light, lights, values);
+          if (first_light == 0) progress.advance(std::uint64_t(rows));
+        });
   });
+  progress.finish();
   const double write_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+      render_seconds;
 
   say("synth: %dx%d, %d lights (%s), seed %llu -> %s: rendered in %.2f s, written in %.2f s",
       options.width, options.height, options.lights,

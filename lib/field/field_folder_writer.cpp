@@ -39,6 +39,15 @@ int open_images_allowed() {
 
 }  // namespace
 
+void fill_strip_from(const ReflectanceField& field, int field_first_row, int first_row, int rows,
+                     int first_light, int lights, float* values) {
+  const std::int64_t row_functions = std::int64_t(field.width) * field.channels;
+  const std::int64_t first = std::int64_t(first_row - field_first_row) * row_functions;
+  for (int l = 0; l < lights; ++l)
+    for (std::int64_t v = 0; v < rows * row_functions; ++v)
+      *values++ = field.values(first + v, first_light + l);
+}
+
 float channel_intensity(const LightRgb& intensities, int channels, int light, int channel) {
   return channels == 1 ? intensities.row(light).mean() : intensities(light, channel);
 }

@@ -30,6 +30,12 @@ float channel_intensity(const LightRgb& intensities, int channels, int light, in
 using FieldStripFill =
     std::function<void(int first_row, int rows, int first_light, int lights, float* values)>;
 
+// The FieldStripFill of pixel rows [first_row, first_row + rows) and lights [first_light,
+// first_light + lights) from `field`, which holds the field's pixel rows from `field_first_row`
+// (0 for a whole field, first_row for a strip rendered for the purpose).
+void fill_strip_from(const ReflectanceField& field, int field_first_row, int first_row, int rows,
+                     int first_light, int lights, float* values);
+
 // How much is held at once: strips of at most `strip_bytes` of values (at least one row of
 // pixels), at most `open_images` images open (0: half the files the process may open); more
 // lights take several passes over the strips.

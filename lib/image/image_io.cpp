@@ -14,6 +14,7 @@
 #include "core/memory_budget.hpp"
 #include "image/image_bytes.hpp"
 #include "image/image_encoding.hpp"
+#include "image/image_rows.hpp"
 #include "image/srgb_codes.hpp"
 
 namespace relume {
@@ -28,27 +29,15 @@ float linear_to_srgb(float v) {
 }
 
 Image read_image(const fs::path& path, const ImageReadOptions& options) {
-  if (!fs::exists(path)) throw Error("image not found: " + path.string());
-  auto input = OIIO::ImageInput::open(path.string());
-  if (!input) throw Error("cannot read image " + path.string() + ": " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw Error("image " + path.string() + " has no pixels");
-  check_memory_need(std::uint64_t(spec.width) * std::uint64_t(spec.height) *
-                        std::uint64_t(spec.nchannels) * sizeof(float),
-                    "image " + path.string() + " (" + std::to_string(spec.width) + "x" +
-                        std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) +
+  ImageRowReader reader(path, options);
+  check_memory_need(std::uint64_t(reader.width()) * std::uint64_t(reader.height()) *
+                        std::uint64_t(reader.channels()) * sizeof(float),
+                    "image " + path.string() + " (" + std::to_string(reader.width()) + "x" +
+                        std::to_string(reader.height()) + ", " + std::to_string(reader.channels()) +
                         " channels)");
-  Image image(spec.width, spec.height, spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-    throw Error("cannot decode image " + path.string() + ": " + input->geterror());
-  if (!spec.format.is_floating_point()) image.source_bits = int(spec.format.size()) * 8;
-  const bool eight_bit = spec.format.basetype == OIIO::TypeDesc::UINT8;
-  const bool srgb = options.eight_bit == EightBitEncoding::srgb ||
-                    (options.eight_bit == EightBitEncoding::automatic &&
-                     !is_linear_color_space(spec.get_string_attribute("oiio:ColorSpace")));
-  if (eight_bit && srgb)
-    for (float& v : image.pixels) v = srgb_to_linear(v);
+  Image image(reader.width(), reader.height(), reader.channels());
+  reader.read_rows(0, reader.height(), image.pixels.data());
+  image.source_bits = reader.source_bits();
   return image;
 }
 

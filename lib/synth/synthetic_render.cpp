@@ -1,6 +1,6 @@
-// Ray-traced OLAT rendering of the synthetic scenes (render_synthetic_field): one orthographic
-// camera ray per sub-pixel sample, then per light a shadow ray against the spheres and the ground
-// and the material's shading. Direct light only, no interreflection.
+// Ray-traced OLAT rendering of the synthetic scenes (SyntheticRenderer, render_synthetic_field):
+// one orthographic camera ray per sub-pixel sample, then per light a shadow ray against the spheres
+// and the ground and the material's shading. Direct light only, no interreflection.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +9,7 @@
 #include <relume/error.hpp>
 #include <string>
 
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "synth/synthetic_scene.hpp"
@@ -94,20 +95,6 @@ class ShadowRays {
   double ground_radius_squared_ = 0;
 };
 
-RowMatrixF allocate_values(const SynthOptions& options) {
-  const std::int64_t functions = std::int64_t(options.width) * options.height * 3;
-  try {
-    return RowMatrixF::Zero(functions, options.lights);
-  } catch (const std::bad_alloc&) {
-    char message[200];
-    std::snprintf(message, sizeof message,
-                  "not enough memory for a %dx%d synthetic field with %d lights (%.1f GiB)",
-                  options.width, options.height, options.lights,
-                  double(functions) * options.lights * sizeof(float) / (1 << 30));
-    throw Error(message);
-  }
-}
-
 std::string image_name(int light, int lights) {
   const int digits = std::max(3, int(std::to_string(lights).size()));
   std::string number = std::to_string(light + 1);
@@ -116,45 +103,70 @@ std::string image_name(int light, int lights) {
 
 }  // namespace
 
-ReflectanceField render_synthetic_field(const SynthOptions& options, ProgressReporter* progress) {
-  const SyntheticScene scene = make_synthetic_scene(options);
-  ReflectanceField field;
-  field.width = options.width;
-  field.height = options.height;
-  field.channels = 3;
-  field.directions = near_uniform_directions(options.lights, options.layout);
-  field.intensities = LightRgb::Ones(options.lights, 3);
+SyntheticRenderer::SyntheticRenderer(const SynthOptions& options)
+    : options_(options), scene_(make_synthetic_scene(options)) {
+  header_.width = options.width;
+  header_.height = options.height;
+  header_.channels = 3;
+  header_.directions = near_uniform_directions(options.lights, options.layout);
+  header_.intensities = LightRgb::Ones(options.lights, 3);
+  header_.values.resize(0, options.lights);
   for (int i = 0; i < options.lights; ++i)
-    field.image_names.push_back(image_name(i, options.lights));
-  field.values = allocate_values(options);
-  field.mask.assign(std::size_t(field.pixels()), 0);
+    header_.image_names.push_back(image_name(i, options.lights));
+  // The mask: pixels that a camera ray of any sample hits.
+  header_.mask.assign(std::size_t(header_.pixels()), 0);
+  const int samples = options.samples_per_axis;
+  parallel_for(std::size_t(options.height), options.threads, [&](std::size_t row, unsigned) {
+    const int y = static_cast<int>(row);
+    for (int x = 0; x < options.width; ++x)
+      for (int sample = 0; sample < samples * samples; ++sample)
+        if (trace_camera_ray(scene_,
+                             scene_.camera.plane_point(x + (sample % samples + 0.5) / samples,
+                                                       y + (sample / samples + 0.5) / samples))) {
+          header_.mask[std::size_t(y) * options.width + x] = 1;
+          break;
+        }
+  });
+}
 
-  const int lights = options.lights;
+ReflectanceField SyntheticRenderer::render_rows(int first_row, int rows,
+                                                ProgressReporter* progress) const {
+  if (first_row < 0 || rows < 0 || first_row + rows > options_.height)
+    throw Error("synthetic rows " + std::to_string(first_row) + " to " +
+                std::to_string(first_row + rows) + " are outside its " +
+                std::to_string(options_.height));
+  ReflectanceField field = header_;
+  field.height = rows;
+  field.mask.assign(header_.mask.begin() + std::ptrdiff_t(first_row) * options_.width,
+                    header_.mask.begin() + std::ptrdiff_t(first_row + rows) * options_.width);
+  const int lights = options_.lights;
+  field.values = RowMatrixF::Zero(field.pixels() * 3, lights);
+
   const Eigen::Vector3d view = Eigen::Vector3d::UnitZ();
   std::vector<Eigen::Vector3d> light_directions(lights), half_vectors(lights);
   std::vector<double> rises(lights);
   for (int i = 0; i < lights; ++i) {
     light_directions[i] = field.directions.row(i).transpose().cast<double>();
     half_vectors[i] = (light_directions[i] + view).normalized();
-    rises[i] = light_directions[i].dot(scene.up);
+    rises[i] = light_directions[i].dot(scene_.up);
   }
-  const int samples = options.samples_per_axis;
+  const int samples = options_.samples_per_axis;
   const double sample_weight = 1.0 / (samples * samples);
 
-  parallel_for(std::size_t(options.height), options.threads, [&](std::size_t row, unsigned) {
-    const int y = static_cast<int>(row);
+  parallel_for(std::size_t(rows), options_.threads, [&](std::size_t row, unsigned) {
+    const int y = first_row + static_cast<int>(row);
     std::vector<Eigen::Vector3d> radiance(lights);
     ShadowRays shadow_rays;
-    for (int x = 0; x < options.width; ++x) {
+    for (int x = 0; x < options_.width; ++x) {
+      if (!field.mask[row * options_.width + x]) continue;
       std::fill(radiance.begin(), radiance.end(), Eigen::Vector3d::Zero());
-      bool covered = false;
       for (int sy = 0; sy < samples; ++sy) {
         for (int sx = 0; sx < samples; ++sx) {
           const auto hit = trace_camera_ray(
-              scene, scene.camera.plane_point(x + (sx + 0.5) / samples, y + (sy + 0.5) / samples));
+              scene_,
+              scene_.camera.plane_point(x + (sx + 0.5) / samples, y + (sy + 0.5) / samples));
           if (!hit) continue;
-          covered = true;
-          shadow_rays.start_at(scene, *hit);
+          shadow_rays.start_at(scene_, *hit);
           for (int i = 0; i < lights; ++i) {
             if (hit->normal.dot(light_directions[i]) <= 0) continue;
             if (shadow_rays.blocked(light_directions[i], rises[i])) continue;
@@ -162,16 +174,24 @@ ReflectanceField render_synthetic_field(const SynthOptions& options, ProgressRep
           }
         }
       }
-      if (!covered) continue;
-      field.mask[std::size_t(y) * options.width + x] = 1;
       for (int c = 0; c < 3; ++c) {
-        float* values = field.values.row(field.function_index(x, y, c)).data();
+        float* values = field.values.row(field.function_index(x, int(row), c)).data();
         for (int i = 0; i < lights; ++i) values[i] = float(radiance[i][c] * sample_weight);
       }
     }
     if (progress) progress->advance();
   });
   return field;
+}
+
+ReflectanceField render_synthetic_field(const SynthOptions& options, ProgressReporter* progress) {
+  validate_synth_options(options);
+  check_memory_need(std::uint64_t(options.width) * std::uint64_t(options.height) * 3 *
+                        std::uint64_t(options.lights) * sizeof(float),
+                    "a synthetic field of " + std::to_string(options.width) + "x" +
+                        std::to_string(options.height) + " pixels and " +
+                        std::to_string(options.lights) + " lights");
+  return SyntheticRenderer(options).render_rows(0, options.height, progress);
 }
 
 }  // namespace relume

@@ -9,8 +9,6 @@
 #include <relume/error.hpp>
 #include <string>
 
-#include "core/memory_budget.hpp"
-
 namespace relume {
 namespace {
 
@@ -130,11 +128,6 @@ void validate_synth_options(const SynthOptions& options) {
     throw Error("samples per pixel axis must be from 1 to " +
                 std::to_string(max_synth_samples_per_axis) + ", got " +
                 std::to_string(options.samples_per_axis));
-  check_memory_need(std::uint64_t(options.width) * std::uint64_t(options.height) * 3 *
-                        std::uint64_t(options.lights) * sizeof(float),
-                    "a synthetic field of " + std::to_string(options.width) + "x" +
-                        std::to_string(options.height) + " pixels and " +
-                        std::to_string(options.lights) + " lights");
 }
 
 const Eigen::Vector3d& SyntheticScene::ground_albedo_at(const Eigen::Vector3d& point) const {

@@ -46,7 +46,7 @@ inline constexpr int max_synth_lights = 65536;
 inline constexpr int max_synth_samples_per_axis = 64;
 
 // Throws relume::Error naming the option when a size, light count or sample count is < 1 or
-// above its maximum, or when the field would not fit the memory budget (core/memory_budget.hpp).
+// above its maximum.
 void validate_synth_options(const SynthOptions& options);
 
 struct SyntheticSphere {
@@ -83,10 +83,31 @@ struct SyntheticScene {
 // The scene for a seed and image size: always at least one sphere of each SurfaceKind.
 SyntheticScene make_synthetic_scene(const SynthOptions& options);
 
-// Renders the scene's OLAT set: width x height x 3 channels, one column per light of
-// near_uniform_directions(options.lights, options.layout), intensities all one, mask 1 where a
-// camera ray hits a sphere or the ground (0 and all-zero values elsewhere). Rows are rendered in
-// parallel; `progress`, if given, advances once per image row.
+// Renders the scene's OLAT set a strip of pixel rows at a time (for fields larger than memory):
+// width x rows x 3 channels, one column per light of near_uniform_directions(options.lights,
+// options.layout), intensities all one, mask 1 where a camera ray of any sample hits a sphere or
+// the ground (0 and all-zero values elsewhere).
+class SyntheticRenderer {
+ public:
+  // Throws Error as validate_synth_options does. Traces the camera rays of every pixel once, for
+  // the mask.
+  explicit SyntheticRenderer(const SynthOptions& options);
+
+  // The whole field without values: size, lights, names, the mask.
+  const ReflectanceField& header() const { return header_; }
+
+  // Pixel rows [first_row, first_row + rows), rendered in parallel; `progress`, if given,
+  // advances once per row.
+  ReflectanceField render_rows(int first_row, int rows, ProgressReporter* progress = nullptr) const;
+
+ private:
+  SynthOptions options_;
+  SyntheticScene scene_;
+  ReflectanceField header_;
+};
+
+// The whole OLAT set at once (SyntheticRenderer over every row); throws Error also when it would
+// not fit the memory budget (core/memory_budget.hpp).
 ReflectanceField render_synthetic_field(const SynthOptions& options,
                                         ProgressReporter* progress = nullptr);
 
