@@ -20,11 +20,13 @@
 #include "compress/opencl_assignment.hpp"
 #include "compress/rate_control.hpp"
 #include "compress/storage_precision.hpp"
+#include "compress/streamed_compression.hpp"
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "field/mask_file.hpp"
@@ -64,6 +66,8 @@ struct CompressArguments {
   std::string psnr_mask;
   int irls_iterations = IrlsSettings{}.iterations;
   bool resume = false;
+  std::string scratch;        // empty: the output's folder
+  std::optional<int> refine;  // unset: 2 after --multires, --iterations streamed
   FieldInputOptions field_input;
   CompressionOptions options;
 };
@@ -182,6 +186,63 @@ void check_targets(const CompressArguments& arguments) {
                 ", which chooses every function's residual length itself");
 }
 
+// The budget compress plans with: --memory-limit as given, else three quarters of what the
+// system says is available (core/memory_budget.hpp).
+std::pair<std::uint64_t, std::string> planning_budget() {
+  const MemoryBudget budget = memory_budget();
+  if (budget.source == "--memory-limit") return {budget.bytes, budget.source};
+  return {budget.bytes / 4 * 3, "three quarters of " + budget.source};
+}
+
+// Throws Error naming the options a streamed compression cannot honour.
+void check_streamable_arguments(const CompressArguments& arguments) {
+  const char* option = arguments.target_error > 0 ? "--target-error"
+                       : has_rate_target(arguments)
+                           ? "a rate target (--target-bytes, --target-psnr)"
+                       : arguments.term_budget.value_or(0) > 0 ? "--term-budget"
+                                                               : nullptr;
+  if (option)
+    throw Error(std::string(option) +
+                " measures many compressions against the whole field, which does not fit the "
+                "memory budget here (the plan is streamed): leave it out, or raise "
+                "--memory-limit");
+}
+
+nlohmann::ordered_json plan_json(const CompressionPlan& plan) {
+  nlohmann::ordered_json json = {{"streamed", plan.streamed},
+                                 {"budget_bytes", plan.budget},
+                                 {"budget_source", plan.budget_source},
+                                 {"field_bytes", plan.field_bytes},
+                                 {"in_memory_bytes", plan.in_memory_bytes}};
+  if (plan.streamed) {
+    json["strip_rows"] = plan.strip_rows;
+    json["sample_rows"] = plan.sample_rows;
+    json["quantization_rows"] = plan.quantization_rows;
+    json["model_bytes"] = plan.model_bytes;
+    json["scratch_bytes_at_most"] = plan.scratch_bytes;
+    json["scratch_folder"] = plan.scratch_folder.string();
+  }
+  return json;
+}
+
+nlohmann::ordered_json streamed_json(const StreamedTrace& trace) {
+  nlohmann::ordered_json passes = nlohmann::ordered_json::array();
+  for (const StreamedPass& pass : trace.passes)
+    passes.push_back({{"pass", pass.pass},
+                      {"l1_objective", pass.objective},
+                      {"changed", pass.changed},
+                      {"seconds", pass.seconds}});
+  return {{"strips", trace.strips},
+          {"sample_rows", trace.sample_rows},
+          {"scratch_bytes", trace.scratch_bytes},
+          {"passes", passes},
+          {"seconds",
+           {{"read", trace.read_seconds},
+            {"sample_clustering", trace.sample_clustering_seconds},
+            {"refine", trace.refine_seconds},
+            {"build", trace.build_seconds}}}};
+}
+
 nlohmann::ordered_json compress_one(const std::string& input, const fs::path& output,
                                     const CompressArguments& arguments,
                                     const CompressionOptions& base_options,
@@ -189,15 +250,36 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   const auto start = Clock::now();
   CompressionOptions options = base_options;
   if (opencl) options.clustering.assign = opencl->function();
+  const unsigned threads = options.clustering.threads;
 
-  const ReflectanceField field =
-      load_input_field(input, arguments.field_input, options.clustering.threads);
+  // The plan: in memory when the field fits the budget, else streamed in strips.
+  const FieldLoadOptions load = input_load_options(input, arguments.field_input, threads);
+  auto reader = std::make_unique<FieldStripReader>(input, load);
+  const auto [budget, budget_source] = planning_budget();
+  const fs::path scratch_folder =
+      arguments.scratch.empty() ? fs::absolute(output).parent_path() : fs::path(arguments.scratch);
+  const CompressionPlan plan =
+      plan_compression(reader->header(), options, budget, budget_source, threads, scratch_folder);
+  note("compress: %s", plan.describe().c_str());
+  if (plan.streamed) {
+    check_streamable_arguments(arguments);
+    check_streamable_options(options);
+    // Unless --refine says otherwise, as many passes over all functions as the in-memory path's
+    // L1 iterations (each pass is one reassignment and one F-step).
+    options.refine_iterations = arguments.refine.value_or(options.clustering.max_iterations);
+  } else {
+    reader.reset();  // the images are read whole instead
+  }
+  std::optional<ReflectanceField> field;
+  if (!plan.streamed) field = load_input_field(input, load);
+  const ReflectanceField& shape = field ? *field : reader->header();
   const double load_seconds = seconds_since(start);
-  note("compress: %s: %dx%d, %d channels, %d lights, loaded in %.2f s", input.c_str(), field.width,
-       field.height, field.channels, field.lights(), load_seconds);
+  note("compress: %s: %dx%d, %d channels, %d lights, %s in %.2f s", input.c_str(), shape.width,
+       shape.height, shape.channels, shape.lights(), field ? "loaded" : "opened", load_seconds);
 
   const fs::path checkpoint = output.string() + ".checkpoint";
-  const std::string print = fingerprint(input, arguments.field_input, options);
+  std::string print = fingerprint(input, arguments.field_input, options);
+  if (plan.streamed) print += " streamed sample " + std::to_string(plan.sample_rows);
   std::optional<ClusteringResume> resume;
   if (arguments.resume && fs::exists(checkpoint)) {
     resume = read_checkpoint(checkpoint, print);
@@ -217,24 +299,35 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   // What the file stores (store_with_precision); `compressed` stays for the report.
   const StoragePrecision precision = storage_precision(arguments, options);
   ContainerOptions container = precision.container_options();
-  const QuantizationBudget budget = precision.quantization_budget();
+  const QuantizationBudget budget_of_quantization = precision.quantization_budget();
 
   std::vector<std::uint8_t> psnr_mask;
   if (!arguments.psnr_mask.empty())
-    psnr_mask = read_mask(arguments.psnr_mask, field.width, field.height);
+    psnr_mask = read_mask(arguments.psnr_mask, shape.width, shape.height);
 
   CompressedField compressed, stored;
   std::optional<QuantizationChoice> quantization;
+  std::optional<StreamedTrace> streamed;
   nlohmann::ordered_json target_choice;
   const char* target_key = arguments.target_error > 0 ? "target_error" : "rate_target";
   auto quantize_start = Clock::now();
-  if (arguments.target_error > 0 || has_rate_target(arguments)) {
-    const QuantizationBudget* asked_budget = precision.quantizes() ? &budget : nullptr;
+  if (plan.streamed) {
+    StreamedCompression result = compress_streamed(
+        *reader, options, plan, stats, streamed.emplace(), output.filename().string() + ".scratch",
+        hook, resume ? &*resume : nullptr);
+    quantize_start = Clock::now();
+    compressed = std::move(result.field);
+    stored = compressed;
+    quantization = store_with_precision_on_strips(result.original_sample, result.sample_rows,
+                                                  stored, precision);
+  } else if (arguments.target_error > 0 || has_rate_target(arguments)) {
+    const QuantizationBudget* asked_budget =
+        precision.quantizes() ? &budget_of_quantization : nullptr;
     TargetSearch search =
         arguments.target_error > 0
-            ? compress_to_target_error(field, options, arguments.target_error, container,
+            ? compress_to_target_error(*field, options, arguments.target_error, container,
                                        asked_budget, stats)
-            : compress_to_rate_target(field, options, rate_target(arguments, field, psnr_mask),
+            : compress_to_rate_target(*field, options, rate_target(arguments, *field, psnr_mask),
                                       container, asked_budget, stats);
     quantize_start = Clock::now();
     compressed = search.field;  // already quantized
@@ -243,10 +336,10 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     options = search.options;
     target_choice = search.explanation;
   } else {
-    compressed = compress_field(field, options, stats, hook, resume ? &*resume : nullptr);
+    compressed = compress_field(*field, options, stats, hook, resume ? &*resume : nullptr);
     quantize_start = Clock::now();
     stored = compressed;
-    quantization = store_with_precision(field, stored, precision);
+    quantization = store_with_precision(*field, stored, precision);
   }
   const double quantize_seconds = seconds_since(quantize_start);
 
@@ -256,23 +349,36 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
 
+  const auto error_start = Clock::now();
   CompressionRun run;
+  run.threads = resolve_thread_count(threads);
+  RelativeError float32_masked;
+  if (plan.streamed) {
+    run.errors = measure_streamed_errors(*reader, plan.strip_rows, stored, compressed,
+                                         stats.residual_entries, arguments.psnr_white, psnr_mask,
+                                         threads, float32_masked, options.clustering.quiet);
+  } else {
+    run.errors = measure_field_errors(*field, stored, stats.residual_entries, arguments.psnr_white,
+                                      psnr_mask, threads);
+    float32_masked = relative_error(*field, compressed, true, all_residual_entries, threads);
+  }
   run.input = input;
   run.output = output.string();
-  run.field = &field;
   run.compressed = &stored;
   run.options = &options;
   run.stats = &stats;
   run.layout = describe_container(output);
-  run.extra_seconds = {
-      {"load", load_seconds}, {"quantize", quantize_seconds}, {"write", write_seconds}};
-  run.threads = resolve_thread_count(options.clustering.threads);
+  run.extra_seconds = {{"load", load_seconds},
+                       {"quantize", quantize_seconds},
+                       {"write", write_seconds},
+                       {"error_measure", seconds_since(error_start)}};
   run.solver = arguments.solver;
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
   run.psnr_white = arguments.psnr_white;
-  run.psnr_mask = psnr_mask;
   run.total_seconds = seconds_since(start);
   nlohmann::ordered_json report = compression_report(run);
+  report["plan"] = plan_json(plan);
+  if (streamed) report["streamed"] = streamed_json(*streamed);
   if (!target_choice.is_null()) report[target_key] = target_choice;
   const bool rounded = quantization || container.weights == ValuePrecision::float16 ||
                        container.residual == ValuePrecision::float16;
@@ -282,8 +388,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
         {"residual_values", to_string(stored_residual_precision(stored, container))},
         {"basis_bits", stored.quantization.basis_bits},
         {"error_masked_stored", report["error_masked"]},
-        {"error_masked_float32",
-         relative_error(field, compressed, true, all_residual_entries, run.threads).mean},
+        {"error_masked_float32", float32_masked.mean},
         {"quantization_error",
          relative_error(compressed, stored, all_residual_entries, run.threads).mean}};
     if (quantization)
@@ -339,6 +444,7 @@ std::vector<fs::path> output_paths(const CompressArguments& arguments) {
 
 void run_compress(CompressArguments& arguments) {
   CompressionOptions options = arguments.options;
+  if (arguments.refine) options.refine_iterations = *arguments.refine;
   options.method = parse_compression_method(arguments.method);
   options.pca.centering = parse_pca_centering(arguments.pca_centering);
   options.residual = parse_residual_budget(arguments.residual);
@@ -490,10 +596,10 @@ const CommandRegistration registration{
           "--multires", options.multires_levels,
           "Cluster a field downsampled 2x per level first, then assign full-resolution "
           "functions among the clusters near them (default 0: off)");
-      command
-          ->add_option("--refine", options.refine_iterations,
-                       "Full-resolution iterations after --multires clustering")
-          ->capture_default_str();
+      command->add_option("--refine", arguments->refine,
+                          "Full-resolution iterations after --multires clustering (default 2), or "
+                          "a streamed compression's passes over all functions after the sample's "
+                          "clustering (default: --iterations)");
       command
           ->add_option("--iterations", clustering.max_iterations,
                        "Cap on L1 iterations (F-step + reassignment); they stop earlier once "
@@ -580,7 +686,16 @@ const CommandRegistration registration{
                           "--target-region mask, e.g. the object's mask when the whole frame "
                           "is compressed (default: the field's mask)");
       command->add_flag("--resume", arguments->resume,
-                        "Continue from OUT.checkpoint, written after every clustering iteration");
+                        "Continue from OUT.checkpoint, written after every clustering iteration "
+                        "(of the sample's clustering when the plan is streamed)");
+      command->add_option(
+          "--scratch", arguments->scratch,
+          "Folder of the scratch file a streamed compression keeps its rows in (float16, up to "
+          "functions x lights x 2 bytes; removed at the end, on error and on Ctrl-C). Default: "
+          "the output's folder. A field that does not fit --memory-limit (a global option; "
+          "default three quarters of the available memory) is compressed streamed: read in "
+          "strips, clustered on a sample, refined and built in passes over the strips; the "
+          "plan is printed and is in the report");
       add_field_input_options(*command, arguments->field_input);
       command->callback([arguments] { run_compress(*arguments); });
     }};

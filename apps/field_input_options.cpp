@@ -55,18 +55,22 @@ std::string describe_field_input(const FieldInputOptions& options) {
   return "mask " + mask + ", encoding " + encoding;
 }
 
-ReflectanceField load_input_field(const std::string& input, const FieldInputOptions& options,
-                                  unsigned threads) {
+FieldLoadOptions input_load_options(const std::string& input, const FieldInputOptions& options,
+                                    unsigned threads) {
   const FieldSource source = describe_field(input);
   const InputEncodingDecision decision = decide_input_encoding(source, requested_encoding(options));
   note("%s: input %s", input.c_str(), decision.reason.c_str());
-  ProgressReporter progress("loading " + std::to_string(source.images.size()) + " images",
-                            source.images.size());
   FieldLoadOptions load;
   load.image.eight_bit = decision.encoding;
   load.threads = threads;
   load.mask_file = options.mask_file;
   load.use_mask = !options.no_mask;
+  return load;
+}
+
+ReflectanceField load_input_field(const std::string& input, FieldLoadOptions load) {
+  const std::size_t images = describe_field(input).images.size();
+  ProgressReporter progress("loading " + std::to_string(images) + " images", images);
   load.image_loaded = [&progress] { progress.advance(); };
   ReflectanceField field = load_field(input, load);
   progress.finish();

@@ -23,9 +23,12 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options);
 // The options as one line ("mask folder, encoding auto"), for checkpoint fingerprints.
 std::string describe_field_input(const FieldInputOptions& options);
 
-// Loads `input` with `threads` workers as the options say: decides the input encoding (once)
-// and notes the decision with its reason, and shows a progress bar while the images load.
-ReflectanceField load_input_field(const std::string& input, const FieldInputOptions& options,
-                                  unsigned threads);
+// How `input` is read as the options say, with `threads` workers: decides the input encoding
+// (once) and notes the decision with its reason. No progress callback.
+FieldLoadOptions input_load_options(const std::string& input, const FieldInputOptions& options,
+                                    unsigned threads);
+
+// Loads `input` as `load` says (input_load_options), with a progress bar while the images load.
+ReflectanceField load_input_field(const std::string& input, FieldLoadOptions load);
 
 }  // namespace relume

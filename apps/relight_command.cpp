@@ -76,8 +76,8 @@ void run_relight(const RelightOptions& options) {
     relight_container(options);
     return;
   }
-  const ReflectanceField field =
-      load_input_field(options.input, options.field_input, options.threads);
+  const ReflectanceField field = load_input_field(
+      options.input, input_load_options(options.input, options.field_input, options.threads));
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
   Image image = relight_field(field, lights, options.threads);
   black_outside(image, field.mask);

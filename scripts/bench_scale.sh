@@ -1,16 +1,50 @@
 #!/usr/bin/env bash
-# Scale benchmark (issue 12), the lights-growing part: a 320x320 synthetic field with 64, 253 and
-# 1024 lights compressed with 64 clusters, 4 terms and 12 residual entries on 2 threads; seconds
-# per phase (and of clustering's parts) from each report, the time ratio against the data ratio,
-# and seeding's share of the run.
-#   scripts/bench_scale.sh [BUILD_DIR] [OUT_DIR]
-# Writes OUT_DIR/scale_lights.csv; the synthetic fields are kept in OUT_DIR for reruns.
+# Scale benchmark (issue 12), in parts:
+#  lights: a 320x320 synthetic field with 64, 253 and 1024 lights compressed with 64 clusters,
+#    4 terms and 12 residual entries on 2 threads; seconds per phase (and of clustering's parts)
+#    from each report, the time ratio against the data ratio, and seeding's share of the run.
+#  fields: synthetic fields of 253 lights growing past a 3 GB memory budget (640x640: 1.2 GB as
+#    float32, 1280x1280: 5 GB, 2560x2560: 20 GB; FIELD_SIDES overrides the list), compressed with
+#    --memory-limit 3G, and the 640x640 one also streamed under 400M: seconds, peak memory,
+#    scratch bytes, Eq. 16 error and seconds per stored function, in memory and streamed.
+#  24mp: a 6000x4000, 60-light hemisphere field (17 GB as float32) within 4 GB.
+#   scripts/bench_scale.sh [BUILD_DIR] [OUT_DIR] [lights|fields|24mp ...]   (default: lights)
+# Writes OUT_DIR/scale_<part>.csv; the synthetic fields are kept in OUT_DIR for reruns (the big
+# ones take tens of GB of disk).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
 out="${2:-/tmp/relume-scale}"
+shift $(( $# > 2 ? 2 : $# ))
+parts=("${@:-lights}")
 relume="$build/apps/relume"
 mkdir -p "$out"
+
+# One compress under a memory limit: a CSV row from its report.
+#   streamed_run NAME FIELD LIMIT CSV
+streamed_run() {
+  local name="$1" field="$2" limit="$3" csv="$4"
+  local report="$out/report_$name.json"
+  "$relume" -q --memory-limit "$limit" compress "$field" -o "$out/$name.relume" -y \
+    --clusters 64 --terms 4 --residual 12 --threads 2 --scratch "$out/scratch" --report "$report"
+  /usr/bin/python3 - "$report" "$name" "$limit" >>"$csv" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+f, plan = r["field"], r["plan"]
+stream = r.get("streamed", {})
+cells = [sys.argv[2], f["width"], f["height"], f["lights"], r["float32_input_bytes"], sys.argv[3],
+         "streamed" if plan["streamed"] else "in memory", plan.get("strip_rows", ""),
+         plan.get("sample_rows", ""), stream.get("scratch_bytes", ""), r["seconds"],
+         r["peak_memory_bytes"], f["stored_rows"], r["seconds"] / f["stored_rows"] * 1e6,
+         r["error_masked"], r["bytes"]]
+print(",".join(f"{v:.4g}" if isinstance(v, float) else str(v) for v in cells))
+PY
+}
+streamed_header="name,width,height,lights,float32_bytes,memory_limit,plan,strip_rows,sample_rows,scratch_bytes,seconds,peak_memory_bytes,stored_rows,microseconds_per_stored_function,error_masked,bytes"
+
+for part in "${parts[@]}"; do
+case "$part" in
+lights)
 
 csv="$out/scale_lights.csv"
 echo "lights,seconds,load,prepare,clustering,seeding,basis_fit,candidates,assignment,residual,error_measure,write,error_masked,peak_memory_bytes" >"$csv"
@@ -38,3 +72,30 @@ a, b = rows[64], rows[1024]
 print(f"64 -> 1024 lights (16x the data): {float(b['seconds']) / float(a['seconds']):.1f}x the time;"
       f" seeding {float(b['seeding']) / float(b['seconds']):.0%} of the 1024-light run")
 PY
+;;
+fields)
+  csv="$out/scale_fields.csv"
+  echo "$streamed_header" >"$csv"
+  for side in ${FIELD_SIDES:-640 1280 2560}; do
+    field="$out/synth_${side}_253"
+    [ -d "$field" ] || "$relume" -q synth -o "$field" --size "${side}x${side}" --lights 253 \
+      --samples 1
+    streamed_run "fields_$side" "$field" 3G "$csv"
+    [ "$side" = 640 ] && streamed_run "fields_640_streamed" "$field" 400M "$csv"
+    if [ "$side" != 640 ]; then rm -rf "$field"; fi  # tens of GB: not kept
+  done
+  cat "$csv"
+;;
+24mp)
+  csv="$out/scale_24mp.csv"
+  echo "$streamed_header" >"$csv"
+  field="$out/synth_6000x4000_60"
+  [ -d "$field" ] || "$relume" -q synth -o "$field" --size 6000x4000 --lights 60 --hemisphere \
+    --samples 1
+  streamed_run "24mp" "$field" 4G "$csv"
+  rm -rf "$field"
+  cat "$csv"
+;;
+*) echo "unknown part '$part' (lights, fields, 24mp)" >&2; exit 2 ;;
+esac
+done

@@ -31,72 +31,76 @@ Eigen::MatrixXf orthonormal_columns(const float* basis, int terms, int lights) {
   return q.cast<float>();
 }
 
-double fit_cluster_basis_l1(const WorkingRows& rows, const std::vector<std::uint32_t>& members,
-                            const RowMatrixF& weights, const IrlsSettings& settings, int terms,
-                            float* basis) {
-  const int lights = rows.lights();
-  const int pairs = terms * (terms + 1) / 2;
-  // Accumulators per light: the weighted Gram (pairs j >= l) and right-hand side (terms).
-  std::vector<double> gram(std::size_t(pairs) * lights), rhs(std::size_t(terms) * lights);
-  std::vector<double> objective(lights), best_objective(lights, HUGE_VAL);
-  std::vector<float> best(std::size_t(terms) * lights), residual(lights);
-  std::vector<double> inverse(lights);
-  const float epsilon = settings.epsilon;  // rows have unit norm
+BasisIrlsFit::BasisIrlsFit(int terms, int lights, float epsilon)
+    : terms_(terms),
+      lights_(lights),
+      epsilon_(epsilon),
+      gram_(std::size_t(terms) * (terms + 1) / 2 * lights),
+      rhs_(std::size_t(terms) * lights),
+      objective_(lights),
+      best_objective_(lights, HUGE_VAL),
+      best_(std::size_t(terms) * lights),
+      residual_(lights),
+      inverse_(lights) {}
 
-  for (int iteration = 0; iteration <= settings.iterations; ++iteration) {
-    const bool solve = iteration < settings.iterations;
-    std::fill(objective.begin(), objective.end(), 0.0);
-    if (solve) {
-      std::fill(gram.begin(), gram.end(), 0.0);
-      std::fill(rhs.begin(), rhs.end(), 0.0);
+void BasisIrlsFit::start_round() {
+  std::fill(gram_.begin(), gram_.end(), 0.0);
+  std::fill(rhs_.begin(), rhs_.end(), 0.0);
+  std::fill(objective_.begin(), objective_.end(), 0.0);
+}
+
+void BasisIrlsFit::add(const float* x, const float* w, const float* basis, bool objective_only) {
+  const int terms = terms_, lights = lights_;
+  std::copy(x, x + lights, residual_.begin());
+  for (int j = 0; j < terms; ++j) {
+    const float* f = basis + std::size_t(j) * lights;
+    for (int i = 0; i < lights; ++i) residual_[i] -= w[j] * f[i];
+  }
+  for (int i = 0; i < lights; ++i) {
+    const double magnitude = std::fabs(residual_[i]);
+    objective_[i] += magnitude;
+    inverse_[i] = 1.0 / std::max<double>(magnitude, epsilon_);
+  }
+  if (objective_only) return;
+  int pair = 0;
+  for (int j = 0; j < terms; ++j) {
+    for (int l = 0; l <= j; ++l, ++pair) {
+      const double product = double(w[j]) * w[l];
+      double* g = gram_.data() + std::size_t(pair) * lights;
+      for (int i = 0; i < lights; ++i) g[i] += inverse_[i] * product;
     }
-    for (const std::uint32_t p : members) {
-      const float* x = rows.row(p);
-      const float* w = weights.row(p).data();
-      std::copy(x, x + lights, residual.begin());
-      for (int j = 0; j < terms; ++j) {
-        const float* f = basis + std::size_t(j) * lights;
-        for (int i = 0; i < lights; ++i) residual[i] -= w[j] * f[i];
-      }
-      for (int i = 0; i < lights; ++i) {
-        const double magnitude = std::fabs(residual[i]);
-        objective[i] += magnitude;
-        inverse[i] = 1.0 / std::max<double>(magnitude, epsilon);
-      }
-      if (!solve) continue;
-      int pair = 0;
-      for (int j = 0; j < terms; ++j) {
-        for (int l = 0; l <= j; ++l, ++pair) {
-          const double product = double(w[j]) * w[l];
-          double* g = gram.data() + std::size_t(pair) * lights;
-          for (int i = 0; i < lights; ++i) g[i] += inverse[i] * product;
-        }
-        double* b = rhs.data() + std::size_t(j) * lights;
-        const double wj = w[j];
-        for (int i = 0; i < lights; ++i) b[i] += inverse[i] * wj * x[i];
-      }
-    }
-    for (int i = 0; i < lights; ++i) {
-      if (objective[i] < best_objective[i]) {
-        best_objective[i] = objective[i];
-        for (int j = 0; j < terms; ++j)
-          best[std::size_t(j) * lights + i] = basis[std::size_t(j) * lights + i];
-      }
-    }
-    if (!solve) break;
-    for (int i = 0; i < lights; ++i) {
-      double g[max_cluster_terms * max_cluster_terms], b[max_cluster_terms];
-      int pair = 0;
-      for (int j = 0; j < terms; ++j) {
-        for (int l = 0; l <= j; ++l, ++pair)
-          g[j * terms + l] = g[l * terms + j] = gram[std::size_t(pair) * lights + i];
-        b[j] = rhs[std::size_t(j) * lights + i];
-      }
-      solve_small_spd(g, b, terms);
-      for (int j = 0; j < terms; ++j) basis[std::size_t(j) * lights + i] = static_cast<float>(b[j]);
+    double* b = rhs_.data() + std::size_t(j) * lights;
+    const double wj = w[j];
+    for (int i = 0; i < lights; ++i) b[i] += inverse_[i] * wj * x[i];
+  }
+}
+
+void BasisIrlsFit::end_round(float* basis, bool solve) {
+  const int terms = terms_, lights = lights_;
+  for (int i = 0; i < lights; ++i) {
+    if (objective_[i] < best_objective_[i]) {
+      best_objective_[i] = objective_[i];
+      for (int j = 0; j < terms; ++j)
+        best_[std::size_t(j) * lights + i] = basis[std::size_t(j) * lights + i];
     }
   }
-  std::copy(best.begin(), best.end(), basis);
+  if (!solve) return;
+  for (int i = 0; i < lights; ++i) {
+    double g[max_cluster_terms * max_cluster_terms], b[max_cluster_terms];
+    int pair = 0;
+    for (int j = 0; j < terms; ++j) {
+      for (int l = 0; l <= j; ++l, ++pair)
+        g[j * terms + l] = g[l * terms + j] = gram_[std::size_t(pair) * lights + i];
+      b[j] = rhs_[std::size_t(j) * lights + i];
+    }
+    solve_small_spd(g, b, terms);
+    for (int j = 0; j < terms; ++j) basis[std::size_t(j) * lights + i] = static_cast<float>(b[j]);
+  }
+}
+
+double BasisIrlsFit::finish(float* basis) const {
+  const int terms = terms_, lights = lights_;
+  std::copy(best_.begin(), best_.end(), basis);
   for (int j = 0; j < terms; ++j) {
     float* f = basis + std::size_t(j) * lights;
     double norm = 0;
@@ -107,8 +111,22 @@ double fit_cluster_basis_l1(const WorkingRows& rows, const std::vector<std::uint
     }
   }
   double total = 0;
-  for (const double value : best_objective) total += value;
+  for (const double value : best_objective_) total += value;
   return total;
+}
+
+double fit_cluster_basis_l1(const WorkingRows& rows, const std::vector<std::uint32_t>& members,
+                            const RowMatrixF& weights, const IrlsSettings& settings, int terms,
+                            float* basis) {
+  BasisIrlsFit fit(terms, rows.lights(), settings.epsilon);  // rows have unit norm
+  for (int round = 0; round <= settings.iterations; ++round) {
+    const bool solve = round < settings.iterations;
+    fit.start_round();
+    for (const std::uint32_t p : members)
+      fit.add(rows.row(p), weights.row(p).data(), basis, !solve);
+    fit.end_round(basis, solve);
+  }
+  return fit.finish(basis);
 }
 
 }  // namespace relume

@@ -27,10 +27,41 @@ std::vector<float> least_squares_subspace(const WorkingRows& rows,
 // where F is rank-deficient).
 Eigen::MatrixXf orthonormal_columns(const float* basis, int terms, int lights);
 
-// F-step for one cluster: for every light i, min_f sum_p |rows[p,i] - W[p,:] f| over the members,
-// by `settings.iterations` IRLS steps from the current basis (updated in place). Each basis row
-// is then scaled to unit L2 norm (W is refitted afterwards by the caller). Returns the L1
-// objective sum_p ||rows[p,:] - W[p,:] F||_1 with the new F.
+// The F-step of one cluster (paper section 3.3) by IRLS, its rows summed one by one, so that they
+// may come in blocks (a streamed pass over a field larger than memory). Each round sums, for
+// every light i, sum_p v_pi W[p,:]^T W[p,:] and sum_p v_pi rows[p,i] W[p,:] with the IRLS weight
+// v_pi = 1 / max(|e_pi|, epsilon) of the row's residual e under the current basis, and the
+// light's L1 residual; ending it keeps every light's best basis column so far and solves the
+// next. A last round without solving measures the final basis.
+class BasisIrlsFit {
+ public:
+  BasisIrlsFit(int terms, int lights, float epsilon);
+  void start_round();
+  // Adds row x (lights values, unit norm) with weights w (terms) under `basis` (t x m); with
+  // objective_only (the last round), only its per-light L1 residual.
+  void add(const float* x, const float* w, const float* basis, bool objective_only = false);
+  // Keeps each light's column of `basis` if its L1 residual is the smallest yet; with `solve`,
+  // then sets `basis` to the weighted least-squares solution of the round.
+  void end_round(float* basis, bool solve);
+  // The best columns into `basis`, each basis row scaled to unit L2 norm; returns their L1
+  // residual.
+  double finish(float* basis) const;
+
+ private:
+  int terms_, lights_;
+  float epsilon_;
+  std::vector<double> gram_, rhs_;  // per light: pairs j >= l, then terms
+  std::vector<double> objective_, best_objective_;
+  std::vector<float> best_;
+  std::vector<float> residual_;
+  std::vector<double> inverse_;
+};
+
+// F-step for one cluster (BasisIrlsFit over its members): for every light i,
+// min_f sum_p |rows[p,i] - W[p,:] f| over the members, by `settings.iterations` IRLS steps from the
+// current basis (updated in place). Each basis row is then scaled to unit L2 norm (W is refitted
+// afterwards by the caller). Returns the L1 objective sum_p ||rows[p,:] - W[p,:] F||_1 with the new
+// F.
 double fit_cluster_basis_l1(const WorkingRows& rows, const std::vector<std::uint32_t>& members,
                             const RowMatrixF& weights, const IrlsSettings& settings, int terms,
                             float* basis);

@@ -206,6 +206,46 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   return out;
 }
 
+ClusterModel cluster_prepared_rows(const WorkingRows& rows, int lights,
+                                   const CompressionOptions& options, CompressionStats& stats,
+                                   const IterationHook& hook, const ClusteringResume* resume) {
+  const ClusteringOptions& clustering = options.clustering;
+  ClusterModel model;
+  if (rows.rows() == 0) {
+    model.terms = clustering.terms;
+    model.lights = lights;
+  } else if (resume && options.method == CompressionMethod::cpca) {
+    throw Error("clustered PCA (--method cpca) writes no checkpoints and cannot resume one");
+  } else if (resume) {
+    model = resume->model;
+    if (model.terms != clustering.terms || model.lights != lights ||
+        model.assignment.size() != rows.rows())
+      throw Error("the checkpoint does not match this input and these settings (" +
+                  std::to_string(model.assignment.size()) + " rows, " +
+                  std::to_string(model.terms) + " terms, " + std::to_string(model.lights) +
+                  " lights; expected " + std::to_string(rows.rows()) + ", " +
+                  std::to_string(clustering.terms) + ", " + std::to_string(lights) + ")");
+    stats.clustering.iterations = resume->iterations;
+    int done = 0;
+    for (const auto& record : resume->iterations) done += record.iteration > 0;
+    const int cap =
+        options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
+    // A checkpoint written after the iteration that settled is the last one: the uninterrupted
+    // run stopped there, so the resumed one iterates no more (else it would write another model).
+    const bool settled = options.multires_levels == 0 && done > 0 &&
+                         double(resume->iterations.back().changed) <=
+                             clustering.settle_fraction * double(rows.rows());
+    iterate_clusters(rows, model, clustering, settled ? 0 : std::max(0, cap - done),
+                     stats.clustering, hook);
+    if (settled) stats.clustering.settled = true;
+  } else if (options.method == CompressionMethod::cpca) {
+    model = cluster_rows_pca(rows, clustering, options.pca, stats.clustering);
+  } else {
+    model = cluster_rows(rows, clustering, stats.clustering, hook);
+  }
+  return model;
+}
+
 CompressedField compress_field(const ReflectanceField& field, const CompressionOptions& options,
                                CompressionStats& stats, const IterationHook& hook,
                                const ClusteringResume* resume) {
@@ -233,43 +273,14 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
 
   start = Clock::now();
   ClusterModel model;
-  if (prepared.functions.empty()) {
-    model.terms = clustering.terms;
-    model.lights = field.lights();
-  } else if (resume && options.method == CompressionMethod::cpca) {
-    throw Error("clustered PCA (--method cpca) writes no checkpoints and cannot resume one");
-  } else if (resume) {
-    model = resume->model;
-    if (model.terms != clustering.terms || model.lights != field.lights() ||
-        model.assignment.size() != prepared.functions.size())
-      throw Error("the checkpoint does not match this input and these settings (" +
-                  std::to_string(model.assignment.size()) + " rows, " +
-                  std::to_string(model.terms) + " terms, " + std::to_string(model.lights) +
-                  " lights; expected " + std::to_string(prepared.functions.size()) + ", " +
-                  std::to_string(clustering.terms) + ", " + std::to_string(field.lights()) + ")");
-    stats.clustering.iterations = resume->iterations;
-    int done = 0;
-    for (const auto& record : resume->iterations) done += record.iteration > 0;
-    const int cap =
-        options.multires_levels > 0 ? options.refine_iterations : clustering.max_iterations;
-    // A checkpoint written after the iteration that settled is the last one: the uninterrupted
-    // run stopped there, so the resumed one iterates no more (else it would write another model).
-    const bool settled = options.multires_levels == 0 && done > 0 &&
-                         double(resume->iterations.back().changed) <=
-                             clustering.settle_fraction * double(prepared.functions.size());
-    iterate_clusters(prepared.rows, model, clustering, settled ? 0 : std::max(0, cap - done),
-                     stats.clustering, hook);
-    if (settled) stats.clustering.settled = true;
-  } else if (options.multires_levels > 0) {
+  if (options.multires_levels > 0 && !prepared.functions.empty() && !resume) {
     stats.multires.emplace();
     model = multires_start(field, prepared, options.multires_levels, haar, stats.noise_floor,
                            clustering, *stats.multires);
     iterate_clusters(prepared.rows, model, clustering, options.refine_iterations, stats.clustering,
                      hook);
-  } else if (options.method == CompressionMethod::cpca) {
-    model = cluster_rows_pca(prepared.rows, clustering, options.pca, stats.clustering);
   } else {
-    model = cluster_rows(prepared.rows, clustering, stats.clustering, hook);
+    model = cluster_prepared_rows(prepared.rows, field.lights(), options, stats, hook, resume);
   }
   stats.residual_entries = options.residual.entries_for(field.lights());
   if (options.trimmed_refit_rounds >= 0 && !prepared.functions.empty() &&

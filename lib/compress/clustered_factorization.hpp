@@ -94,6 +94,15 @@ struct CompressionStats {
 // needs the field (terms below its lights).
 void validate_compression_options(const CompressionOptions& options);
 
+// The clustering of `rows` (a field's prepared rows, or a streamed compression's sample of them,
+// of `lights` lights) by options.method, multi-resolution aside: continued from `resume` when
+// given (L1 only; Error when its model does not match the rows), else seeded. Adds to
+// stats.clustering.
+ClusterModel cluster_prepared_rows(const WorkingRows& rows, int lights,
+                                   const CompressionOptions& options, CompressionStats& stats,
+                                   const IterationHook& hook = {},
+                                   const ClusteringResume* resume = nullptr);
+
 // `hook` runs after every clustering iteration (for checkpoints); `resume` skips the seeding (and
 // the multi-resolution start) and continues its iterations up to the cap.
 CompressedField compress_field(const ReflectanceField& field, const CompressionOptions& options,

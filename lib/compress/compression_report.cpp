@@ -3,13 +3,8 @@
 
 #include <sys/resource.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-
-#include "model/field_psnr.hpp"
-#include "model/per_light_error.hpp"
-#include "model/reconstruct_field.hpp"
 
 namespace relume {
 namespace {
@@ -115,28 +110,16 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
 }
 
 nlohmann::ordered_json compression_report(const CompressionRun& run) {
-  const auto start = std::chrono::steady_clock::now();
-  const ReflectanceField& field = *run.field;
   const CompressedField& compressed = *run.compressed;
   const CompressionStats& stats = *run.stats;
-  const RelativeError all =
-      relative_error(field, compressed, false, all_residual_entries, run.threads);
-  const RelativeError masked =
-      relative_error(field, compressed, true, all_residual_entries, run.threads);
+  const FieldErrors& errors = run.errors;
   nlohmann::ordered_json by_prefix = nlohmann::ordered_json::object();
-  for (const int cap : {0, 1, 3, 5, 10, 20}) {
-    if (cap >= stats.residual_entries) break;
-    by_prefix[std::to_string(cap)] = relative_error(field, compressed, true, cap, run.threads).mean;
-  }
-  by_prefix[std::to_string(stats.residual_entries)] = masked.mean;
-  const PerLightError per_light =
-      per_light_error(field, compressed, true, all_residual_entries, run.threads);
-  const Psnr8 psnr = psnr_8bit(field, compressed, run.psnr_white, all_residual_entries, run.threads,
-                               run.psnr_mask);
-  const double error_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const auto& [cap, error] : errors.masked_by_prefix)
+    by_prefix[std::to_string(cap)] = error.mean;
+  by_prefix[std::to_string(stats.residual_entries)] = errors.masked.mean;
 
-  const std::uint64_t input_bytes = std::uint64_t(field.functions()) * field.lights() * 4;
+  const std::uint64_t input_bytes =
+      std::uint64_t(compressed.functions()) * std::uint64_t(compressed.lights) * 4;
   nlohmann::ordered_json sections = nlohmann::ordered_json::object();
   sections["preamble"] = run.layout.preamble_bytes;
   for (const ContainerSection& section : run.layout.sections)
@@ -148,8 +131,7 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
 
   nlohmann::ordered_json phases = {{"prepare", stats.prepare_seconds},
                                    {"clustering", stats.clustering_seconds},
-                                   {"residual", stats.residual_seconds},
-                                   {"error_measure", error_seconds}};
+                                   {"residual", stats.residual_seconds}};
   for (const auto& [name, seconds] : run.extra_seconds) phases[name] = seconds;
 
   nlohmann::ordered_json report = {
@@ -158,24 +140,25 @@ nlohmann::ordered_json compression_report(const CompressionRun& run) {
       {"seconds", run.total_seconds},
       {"bytes", run.layout.file_bytes},
       {"ratio", double(run.layout.file_bytes) / double(input_bytes)},
-      {"error_all", all.mean},
-      {"error_masked", masked.mean},
+      {"error_all", errors.all.mean},
+      {"error_masked", errors.masked.mean},
       {"psnr_8bit",
-       {{"whole_frame", finite_or_null(psnr.whole_frame)},
-        {"mask", finite_or_null(psnr.masked)},
+       {{"whole_frame", finite_or_null(errors.psnr.whole_frame)},
+        {"mask", finite_or_null(errors.psnr.masked)},
         {"white", run.psnr_white}}},
-      {"bytes_per_pixel", double(run.layout.file_bytes) / double(field.pixels())},
+      {"bytes_per_pixel",
+       double(run.layout.file_bytes) / (double(compressed.width) * double(compressed.height))},
       {"float32_input_bytes", input_bytes},
       {"sections", sections},
       {"error_masked_by_residual_entries", by_prefix},
-      {"per_light_error_masked", per_light_error_json(per_light, compressed)},
-      {"error_all_detail", error_json(all)},
-      {"error_masked_detail", error_json(masked)},
+      {"per_light_error_masked", per_light_error_json(errors.per_light, compressed)},
+      {"error_all_detail", error_json(errors.all)},
+      {"error_masked_detail", error_json(errors.masked)},
       {"field",
-       {{"width", field.width},
-        {"height", field.height},
-        {"channels", field.channels},
-        {"lights", field.lights()},
+       {{"width", compressed.width},
+        {"height", compressed.height},
+        {"channels", compressed.channels},
+        {"lights", compressed.lights},
         {"functions", stats.functions},
         {"stored_rows", stats.stored_rows},
         {"outside_mask", stats.outside_mask},

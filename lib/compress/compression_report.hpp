@@ -12,24 +12,25 @@
 #include <string>
 
 #include "compress/clustered_factorization.hpp"
+#include "compress/field_errors.hpp"
 #include "container/container.hpp"
 
 namespace relume {
 
 struct CompressionRun {
   std::string input, output;
-  const ReflectanceField* field = nullptr;
-  const CompressedField* compressed = nullptr;
+  const CompressedField* compressed = nullptr;  // as stored
+  FieldErrors errors;                           // of `compressed` against the original
   const CompressionOptions* options = nullptr;
   const CompressionStats* stats = nullptr;
   ContainerLayout layout;
-  std::map<std::string, double> extra_seconds;  // phases outside compress_field (load, write)
+  // Phases outside compress_field (load, write, error_measure, the streamed passes).
+  std::map<std::string, double> extra_seconds;
   double total_seconds = 0;
   unsigned threads = 0;
   std::string solver;
-  std::string assignment_device;        // "cpu" or the OpenCL device label
-  double psnr_white = 1.0;              // the field value that is 255 in the 8-bit PSNR
-  std::vector<std::uint8_t> psnr_mask;  // the PSNR's "mask" region; empty: the field's mask
+  std::string assignment_device;  // "cpu" or the OpenCL device label
+  double psnr_white = 1.0;        // the field value that is 255 in the 8-bit PSNR
 };
 
 // The compression parameters recorded in the container header (a JSON object).

@@ -5,6 +5,8 @@
 #include <relume/error.hpp>
 
 #include "container/container.hpp"
+#include "model/basis_alignment.hpp"
+#include "model/compressed_field_rows.hpp"
 
 namespace relume {
 
@@ -38,6 +40,28 @@ std::optional<QuantizationChoice> store_with_precision(const ReflectanceField& o
   std::optional<QuantizationChoice> choice;
   if (precision.quantizes())
     choice = quantize_with_budget(original, field, precision.quantization_budget());
+  field = quantize_for_container(field, precision.container_options());
+  return choice;
+}
+
+std::optional<QuantizationChoice> store_with_precision_on_strips(
+    const ReflectanceField& sample, const std::vector<std::pair<int, int>>& strips,
+    CompressedField& field, const StoragePrecision& precision) {
+  std::optional<QuantizationChoice> choice;
+  if (precision.quantizes()) {
+    const QuantizationBudget budget = precision.quantization_budget();
+    if (budget.term_increase > 0)
+      throw Error(
+          "--term-budget chooses terms per cluster against the whole field, which does not fit "
+          "the memory budget here: leave it at 0, or raise --memory-limit");
+    align_cluster_bases(field);
+    CompressedField sampled;
+    for (const auto& [first_row, rows] : strips)
+      append_compressed_rows(sampled, compressed_rows(field, first_row, rows));
+    choice = choose_quantization(sample, sampled, budget);
+    choice->steps = steps_that_fit(field, choice->steps);
+    field = quantize_values(field, choice->steps);
+  }
   field = quantize_for_container(field, precision.container_options());
   return choice;
 }

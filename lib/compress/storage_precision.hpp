@@ -6,6 +6,8 @@
 
 #include <optional>
 #include <relume/container.hpp>
+#include <utility>
+#include <vector>
 
 #include "model/quantization.hpp"
 
@@ -32,5 +34,13 @@ struct StoragePrecision {
 std::optional<QuantizationChoice> store_with_precision(const ReflectanceField& original,
                                                        CompressedField& field,
                                                        const StoragePrecision& precision);
+
+// As store_with_precision for a field whose original is too large to hold: the quantization is
+// chosen against `sample`, pixel-row strips of the original stacked in order, whose rows of the
+// field are `strips` (first row, rows). Throws Error for a term budget (choosing terms per
+// cluster needs the whole original) and as store_with_precision.
+std::optional<QuantizationChoice> store_with_precision_on_strips(
+    const ReflectanceField& sample, const std::vector<std::pair<int, int>>& strips,
+    CompressedField& field, const StoragePrecision& precision);
 
 }  // namespace relume

@@ -147,6 +147,14 @@ CompressedField quantize_values(const CompressedField& field, const Quantization
   return quantized;
 }
 
+QuantizationSteps steps_that_fit(const CompressedField& field, QuantizationSteps steps) {
+  if (steps.weight_step > 0)
+    steps.weight_step = std::max(steps.weight_step, finest_step(largest_weight(field)));
+  if (steps.residual_step > 0)
+    steps.residual_step = std::max(steps.residual_step, finest_step(largest_residual(field)));
+  return steps;
+}
+
 QuantizationChoice choose_quantization(const ReflectanceField& original,
                                        const CompressedField& field,
                                        const QuantizationBudget& budget) {
@@ -200,13 +208,8 @@ QuantizationChoice choose_quantization(const ReflectanceField& original,
       steps.residual_step =
           std::max(steps.residual_step * 0.5f, finest_step(largest_residual(field)));
   }
-  // The whole field's largest values must fit the integers too.
-  if (steps.weight_step > 0)
-    steps.weight_step = std::max(steps.weight_step, finest_step(largest_weight(field)));
-  if (steps.residual_step > 0)
-    steps.residual_step = std::max(steps.residual_step, finest_step(largest_residual(field)));
-  choice.steps = steps;
-  choice.error_quantized = choice.error_unquantized + increase(steps);
+  choice.steps = steps_that_fit(field, steps);
+  choice.error_quantized = choice.error_unquantized + increase(choice.steps);
   return choice;
 }
 

@@ -55,6 +55,10 @@ QuantizationChoice choose_quantization(const ReflectanceField& original,
                                        const CompressedField& field,
                                        const QuantizationBudget& budget);
 
+// `steps` widened where needed so that the field's largest weight and residual value fit the
+// integers (a step chosen on a sample of the field may be too fine for the whole).
+QuantizationSteps steps_that_fit(const CompressedField& field, QuantizationSteps steps);
+
 // The whole step, in place: drop_unneeded_terms within budget.term_increase
 // (model/cluster_terms.hpp), align_cluster_bases, choose_quantization, quantize_values.
 QuantizationChoice quantize_with_budget(const ReflectanceField& original, CompressedField& field,

@@ -1,8 +1,9 @@
 // Fault tests of `relume compress` under SIGINT and SIGTERM, sent by the test to the running
 // command: during clustering (once its first checkpoint exists) and during the final write (the
 // moment the container's temporary file is created, seen with inotify). Each run must exit 128 +
-// the signal, leave no temporary file, and either a complete container or a valid checkpoint from
-// which --resume writes the same bytes as an uninterrupted run.
+// the signal, leave no temporary file (the streamed plan's scratch file included), and either a
+// complete container or a valid checkpoint from which --resume writes the same bytes as an
+// uninterrupted run. Both plans are tried: in memory, and streamed under a memory limit.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -29,11 +30,16 @@ const std::vector<std::string> compress_options = {"--clusters",   "12", "--term
                                                    "--iterations", "25", "--assign",   "cpu",
                                                    "--threads",    "2",  "--residual", "3"};
 
-// Starts `relume compress scene -o out [--resume]` in `dir`, its output in dir/log.txt.
-pid_t start_compress(const testing::TempDir& dir, bool resume) {
-  std::vector<std::string> args = {RELUME_BINARY, "-q",
-                                   "compress",    (dir / "scene").string(),
-                                   "-o",          (dir / "out.relume").string()};
+// A memory limit under which the 40x40x20 scene is compressed streamed, in strips of 2 rows.
+const std::string streamed_limit = "800K";
+
+// Starts `relume [--memory-limit L] compress scene -o out [--resume]` in `dir`, its output in
+// dir/log.txt.
+pid_t start_compress(const testing::TempDir& dir, bool resume, bool streamed) {
+  std::vector<std::string> args = {RELUME_BINARY, "-q"};
+  if (streamed) args.insert(args.end(), {"--memory-limit", streamed_limit});
+  args.insert(args.end(),
+              {"compress", (dir / "scene").string(), "-o", (dir / "out.relume").string()});
   args.insert(args.end(), compress_options.begin(), compress_options.end());
   if (resume) args.push_back("--resume");
   std::vector<char*> argv;
@@ -64,7 +70,8 @@ std::vector<std::string> temporaries(const fs::path& dir) {
   return names;
 }
 
-class CompressInterruption : public ::testing::Test {
+template <bool Streamed>
+class Interruption : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     reference_dir_ = new testing::TempDir;
@@ -73,9 +80,13 @@ class CompressInterruption : public ::testing::Test {
     ASSERT_EQ(synth.exit_code, 0) << synth.output;
     std::string line;
     for (const auto& o : compress_options) line += " " + o;
-    const auto run = run_relume("-q compress '" + (*reference_dir_ / "scene").string() + "' -o '" +
-                                (*reference_dir_ / "reference.relume").string() + "'" + line);
+    const std::string global = Streamed ? "--memory-limit " + streamed_limit + " " : "";
+    const auto run =
+        run_relume(global + "compress '" + (*reference_dir_ / "scene").string() + "' -o '" +
+                   (*reference_dir_ / "reference.relume").string() + "'" + line);
     ASSERT_EQ(run.exit_code, 0) << run.output;
+    ASSERT_NE(run.output.find(Streamed ? "plan: streamed" : "plan: in memory"), std::string::npos)
+        << run.output;
     reference_ = new std::string(read_file(*reference_dir_ / "reference.relume"));
   }
   static void TearDownTestSuite() {
@@ -94,7 +105,7 @@ class CompressInterruption : public ::testing::Test {
     EXPECT_THAT(temporaries(dir_.path()), ::testing::IsEmpty());
     if (!fs::exists(dir_ / "out.relume")) {
       ASSERT_TRUE(fs::exists(dir_ / "out.relume.checkpoint")) << read_file(dir_ / "log.txt");
-      EXPECT_EQ(wait_exit(start_compress(dir_, true)), 0) << read_file(dir_ / "log.txt");
+      EXPECT_EQ(wait_exit(start_compress(dir_, true, Streamed)), 0) << read_file(dir_ / "log.txt");
       EXPECT_FALSE(fs::exists(dir_ / "out.relume.checkpoint"));
     }
     EXPECT_TRUE(read_file(dir_ / "out.relume") == *reference_)
@@ -102,7 +113,7 @@ class CompressInterruption : public ::testing::Test {
   }
 
   void interrupt_during_clustering(int signal_number) {
-    const pid_t pid = start_compress(dir_, false);
+    const pid_t pid = start_compress(dir_, false, Streamed);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     while (!fs::exists(dir_ / "out.relume.checkpoint") &&
            std::chrono::steady_clock::now() < deadline)
@@ -118,7 +129,7 @@ class CompressInterruption : public ::testing::Test {
     const int watch = inotify_init1(IN_CLOEXEC);
     ASSERT_GE(watch, 0);
     inotify_add_watch(watch, dir_.path().c_str(), IN_CREATE);
-    const pid_t pid = start_compress(dir_, false);
+    const pid_t pid = start_compress(dir_, false, Streamed);
     const std::string container_temp = ".tmp-" + std::to_string(pid) + "-out.relume";
     alignas(inotify_event) char buffer[4096];
     for (bool seen = false; !seen;) {
@@ -145,13 +156,24 @@ class CompressInterruption : public ::testing::Test {
   static std::string* reference_;
 };
 
-testing::TempDir* CompressInterruption::reference_dir_ = nullptr;
-std::string* CompressInterruption::reference_ = nullptr;
+template <bool Streamed>
+testing::TempDir* Interruption<Streamed>::reference_dir_ = nullptr;
+template <bool Streamed>
+std::string* Interruption<Streamed>::reference_ = nullptr;
+
+using CompressInterruption = Interruption<false>;
+using StreamedCompressInterruption = Interruption<true>;
 
 TEST_F(CompressInterruption, SigintDuringClustering) { interrupt_during_clustering(SIGINT); }
 TEST_F(CompressInterruption, SigtermDuringClustering) { interrupt_during_clustering(SIGTERM); }
 TEST_F(CompressInterruption, SigintDuringTheFinalWrite) { interrupt_during_final_write(SIGINT); }
 TEST_F(CompressInterruption, SigtermDuringTheFinalWrite) { interrupt_during_final_write(SIGTERM); }
+TEST_F(StreamedCompressInterruption, SigintDuringClustering) {
+  interrupt_during_clustering(SIGINT);
+}
+TEST_F(StreamedCompressInterruption, SigtermDuringTheFinalWrite) {
+  interrupt_during_final_write(SIGTERM);
+}
 
 }  // namespace
 }  // namespace relume

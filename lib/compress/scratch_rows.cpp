@@ -1,0 +1,93 @@
+// Implementation of the streamed compression's scratch store (see scratch_rows.hpp).
+#include "compress/scratch_rows.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <Eigen/Core>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <relume/error.hpp>
+
+namespace relume {
+namespace fs = std::filesystem;
+
+ScratchRows::ScratchRows(const fs::path& folder, const std::string& name, int lights)
+    : lights_(lights) {
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error)
+    throw Error("cannot create the scratch folder " + folder.string() + ": " + error.message());
+  path_ = temporary_path_for(folder / name);
+  remove_stale_temporaries(folder / name);
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd_ < 0)
+    throw Error("cannot write the scratch file " + path_.string() + ": " + std::strerror(errno));
+  registration_ =
+      std::make_unique<TemporaryPathRegistration>(path_, TemporaryPathRegistration::Kind::file);
+}
+
+ScratchRows::~ScratchRows() {
+  if (fd_ >= 0) ::close(fd_);
+  std::error_code ignored;
+  fs::remove(path_, ignored);
+}
+
+void ScratchRows::append(const WorkingRows& rows) {
+  const std::size_t values = rows.rows() * std::size_t(lights_);
+  std::vector<Eigen::half> halves(values);
+  const float* data = rows.values.data();
+  for (std::size_t v = 0; v < values; ++v) halves[v] = Eigen::half(data[v]);
+  off_t offset = off_t(bytes());
+  const char* data_bytes = reinterpret_cast<const char*>(halves.data());
+  std::size_t left = values * sizeof(Eigen::half);
+  while (left > 0) {
+    const ssize_t written = ::pwrite(fd_, data_bytes, left, offset);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0)
+      throw Error("cannot write the scratch file " + path_.string() + ": " +
+                  std::strerror(written < 0 ? errno : ENOSPC));
+    data_bytes += written;
+    left -= std::size_t(written);
+    offset += written;
+  }
+  norms_.insert(norms_.end(), rows.norms.begin(), rows.norms.end());
+}
+
+WorkingRows ScratchRows::read(std::size_t first, std::size_t count) const {
+  if (first + count > rows())
+    throw Error("scratch file " + path_.string() + ": rows " + std::to_string(first) + " to " +
+                std::to_string(first + count) + " are beyond its " + std::to_string(rows()));
+  std::vector<Eigen::half> halves(count * std::size_t(lights_));
+  char* data_bytes = reinterpret_cast<char*>(halves.data());
+  std::size_t left = halves.size() * sizeof(Eigen::half);
+  off_t offset = off_t(first * std::size_t(lights_) * sizeof(Eigen::half));
+  while (left > 0) {
+    const ssize_t got = ::pread(fd_, data_bytes, left, offset);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0)
+      throw Error("cannot read the scratch file " + path_.string() + ": " +
+                  (got < 0 ? std::strerror(errno) : "it is shorter than written"));
+    data_bytes += got;
+    left -= std::size_t(got);
+    offset += got;
+  }
+  WorkingRows rows;
+  rows.values.resize(Eigen::Index(count), lights_);
+  rows.norms.assign(norms_.begin() + std::ptrdiff_t(first),
+                    norms_.begin() + std::ptrdiff_t(first + count));
+  for (std::size_t r = 0; r < count; ++r) {
+    float* out = rows.values.data() + r * std::size_t(lights_);
+    double energy = 0;
+    for (int i = 0; i < lights_; ++i) {
+      out[i] = float(halves[r * std::size_t(lights_) + std::size_t(i)]);
+      energy += double(out[i]) * out[i];
+    }
+    const float scale = energy > 0 ? float(1.0 / std::sqrt(energy)) : 1.0f;
+    for (int i = 0; i < lights_; ++i) out[i] *= scale;
+  }
+  return rows;
+}
+
+}  // namespace relume

@@ -1,0 +1,468 @@
+// Implementation of streamed compression and its memory plan (see streamed_compression.hpp).
+// Interruptible: every strip and block checks for a Ctrl-C (lib/core/interruption.hpp).
+#include "compress/streamed_compression.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <relume/error.hpp>
+
+#include "compress/cluster_basis.hpp"
+#include "compress/peak_residual_allocation.hpp"
+#include "compress/scratch_rows.hpp"
+#include "core/elapsed_time.hpp"
+#include "core/interruption.hpp"
+#include "core/memory_budget.hpp"
+#include "core/parallel.hpp"
+#include "core/progress.hpp"
+#include "model/compressed_field_rows.hpp"
+#include "model/quantization.hpp"
+#include "model/reconstruct_field.hpp"
+
+namespace relume {
+namespace {
+
+// Bytes of the clustering sample per row per light: the rows, the seeding's sample copy and the
+// clustering's working copies.
+constexpr std::uint64_t sample_bytes_per_value = 12;
+
+// Rows a whole-field quantization choice measures (QuantizationBudget::sample_rows).
+constexpr std::uint64_t quantization_sample_rows = QuantizationBudget{}.sample_rows;
+
+std::uint64_t inside_functions(const ReflectanceField& header) {
+  std::uint64_t inside = 0;
+  for (const std::uint8_t value : header.mask) inside += value != 0;
+  if (header.mask.empty()) inside = std::uint64_t(header.pixels());
+  return inside * std::uint64_t(header.channels);
+}
+
+// The residual entries a stored row may hold.
+int row_cap(const CompressionOptions& options, int lights) {
+  const int entries = options.residual.entries_for(lights);
+  return options.residual_allocation == ResidualAllocation::peak
+             ? std::min(lights, entries * peak_allocation_row_cap)
+             : entries;
+}
+
+}  // namespace
+
+std::string CompressionPlan::describe() const {
+  char line[1024];
+  if (!streamed) {
+    std::snprintf(line, sizeof line,
+                  "plan: in memory (the field is %s as float32, compressing it needs about %s; "
+                  "the budget is %s, %s)",
+                  byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
+                  byte_size_text(budget).c_str(), budget_source.c_str());
+  } else {
+    std::snprintf(line, sizeof line,
+                  "plan: streamed (the field is %s as float32, in memory it would need about %s; "
+                  "the budget is %s, %s): strips of %d pixel rows, a clustering sample of up to "
+                  "%zu functions, scratch of up to %s in %s, model and pass state about %s, "
+                  "quantization measured on %zu original functions",
+                  byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
+                  byte_size_text(budget).c_str(), budget_source.c_str(), strip_rows, sample_rows,
+                  byte_size_text(scratch_bytes).c_str(), scratch_folder.string().c_str(),
+                  byte_size_text(model_bytes).c_str(), quantization_rows);
+  }
+  return line;
+}
+
+CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
+                                 std::uint64_t budget, const std::string& budget_source,
+                                 unsigned threads, const std::filesystem::path& scratch_folder) {
+  const std::uint64_t lights = std::uint64_t(header.lights());
+  const std::uint64_t terms = std::uint64_t(options.clustering.terms);
+  const std::uint64_t clusters = std::uint64_t(options.clustering.clusters);
+  const std::uint64_t functions = inside_functions(header);
+  const std::uint64_t row_functions = std::uint64_t(header.width) * header.channels;
+  CompressionPlan plan;
+  plan.budget = budget;
+  plan.budget_source = budget_source;
+  plan.field_bytes = std::uint64_t(header.pixels()) * header.channels * lights * sizeof(float);
+  // The compressed field (W, the residual's indices and values, row and cluster indices) as
+  // built, as stored and as quantized.
+  const std::uint64_t compressed =
+      functions * (terms * 4 + std::uint64_t(row_cap(options, int(lights))) * 8 + 8) * 3;
+  plan.in_memory_bytes = 2 * plan.field_bytes + compressed;
+  if (plan.in_memory_bytes <= budget) return plan;
+
+  plan.streamed = true;
+  plan.scratch_folder = scratch_folder;
+  plan.scratch_bytes = functions * lights * 2;
+  // Besides the compressed field: every row's norm, function, cluster (and peak) and weights in
+  // the passes, and the clusters' normal equations, best and current bases.
+  plan.model_bytes = compressed + functions * (20 + terms * 4) +
+                     clusters * lights * (terms * (terms + 1) / 2 + 3 * terms + 2) * 8;
+  // Per pixel row of a strip: the strip's field, its prepared rows, the built rows and the
+  // error measure's reconstruction, and every reading thread's decoded image rows.
+  const std::uint64_t strip_row_bytes =
+      row_functions * lights * 4 * 4 +
+      std::uint64_t(resolve_thread_count(threads)) * header.width * 4 * sizeof(float);
+  const std::uint64_t sample_row_bytes = lights * sample_bytes_per_value;
+  const std::uint64_t original_row_bytes = lights * sizeof(float);
+  const std::uint64_t fewest_sample = std::min<std::uint64_t>(functions, 16 * clusters);
+  const std::uint64_t least = plan.model_bytes + strip_row_bytes +
+                              fewest_sample * sample_row_bytes + row_functions * original_row_bytes;
+  if (budget < least)
+    throw Error("the memory budget of " + byte_size_text(budget) + " (" + budget_source +
+                ") cannot hold even a one-row strip of this " + std::to_string(header.width) + "x" +
+                std::to_string(header.height) + "x" + std::to_string(lights) +
+                " field with its model: that needs about " + byte_size_text(least) + " (model " +
+                byte_size_text(plan.model_bytes) + ", strip row " +
+                byte_size_text(strip_row_bytes) + ", clustering sample " +
+                byte_size_text(fewest_sample * sample_row_bytes) +
+                "); raise --memory-limit or compress fewer clusters or terms");
+  std::uint64_t left = budget - plan.model_bytes;
+  // An eighth of what is left to the quantization's original rows, two thirds of the rest to the
+  // clustering sample (the more rows the clusters are found on, the closer the result is to the
+  // in-memory one), the rest to the strips (their height only sets how many reads there are).
+  plan.quantization_rows = std::size_t(std::clamp<std::uint64_t>(
+      left / 8 / original_row_bytes, row_functions,
+      std::min<std::uint64_t>(functions, quantization_sample_rows) + row_functions));
+  left -= plan.quantization_rows * original_row_bytes;
+  plan.sample_rows = std::size_t(
+      std::max(fewest_sample, std::min<std::uint64_t>(functions, left / 3 * 2 / sample_row_bytes)));
+  const std::uint64_t for_strips = left - std::min(left, plan.sample_rows * sample_row_bytes);
+  plan.strip_rows =
+      int(std::clamp<std::uint64_t>(for_strips / strip_row_bytes, 1, std::uint64_t(header.height)));
+  return plan;
+}
+
+void check_streamable_options(const CompressionOptions& options) {
+  const char* option = nullptr;
+  if (options.method == CompressionMethod::cpca)
+    option = "--method cpca";
+  else if (options.multires_levels > 0)
+    option = "--multires";
+  else if (options.light_weighting > 0)
+    option = "--light-weighting";
+  else if (options.trimmed_refit_rounds >= 0)
+    option = "--trimmed-refit";
+  else if (options.clustering.exact_refit)
+    option = "--solver (an exact refit)";
+  if (option)
+    throw Error(std::string(option) +
+                " needs the whole field in memory, which does not fit the memory budget here "
+                "(the plan is streamed): leave it out, or raise --memory-limit");
+}
+
+namespace {
+
+// Every row of `rows` assigned to its best cluster of `bases` (a model without assignment),
+// among the candidates nearest by least squares and, when `current` is not empty, the row's
+// current cluster (as the in-memory iterations keep it among the candidates), with its weights
+// refitted.
+AssignmentResult assign_to_bases(const WorkingRows& rows, const ClusterModel& bases,
+                                 const ClusteringOptions& options,
+                                 const std::vector<std::int32_t>& current) {
+  CandidateOptions candidate_options;
+  candidate_options.count = options.candidates;
+  if (!current.empty()) candidate_options.always_include = &current;
+  const CandidateLists candidates =
+      nearest_subspace_candidates(rows, bases, candidate_options, options.threads);
+  if (options.assign) return options.assign(rows, bases, candidates);
+  return assign_to_best_cluster(rows, bases, candidates, options.weight_fit, options.threads);
+}
+
+// What pass 1 keeps of the field besides the scratch rows.
+struct ReadResult {
+  std::vector<std::uint32_t> functions;    // stored row -> function, ascending
+  std::vector<std::uint32_t> dark_pixels;  // ascending
+  std::vector<double> dark_sum;            // channels x lights, in the rows' basis
+  WorkingRows sample;
+};
+
+ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& options,
+                       const CompressionPlan& plan, float noise_floor, ScratchRows& scratch,
+                       CompressionStats& stats) {
+  const ReflectanceField& header = reader.header();
+  const int lights = header.lights();
+  const bool haar = options.transform == BasisTransform::haar;
+  const std::uint64_t functions = inside_functions(header);
+  const std::size_t stride = std::size_t(std::max<std::uint64_t>(
+      1, (functions + plan.sample_rows - 1) / std::max<std::size_t>(plan.sample_rows, 1)));
+  ReadResult result;
+  result.dark_sum.assign(std::size_t(header.channels) * lights, 0.0);
+  std::vector<float> sample_values, sample_norms;
+  ProgressReporter progress("compress: reading strips", std::uint64_t(header.height),
+                            options.clustering.quiet);
+  reader.rewind();
+  for (int y = 0; y < header.height; y += plan.strip_rows) {
+    throw_if_interrupted();
+    const int rows = std::min(plan.strip_rows, header.height - y);
+    const ReflectanceField strip = reader.read(y, rows);
+    const PreparedRows prepared =
+        prepare_rows(strip, haar, noise_floor, options.clustering.threads);
+    const std::uint32_t first_function = std::uint32_t(y) * header.width * header.channels;
+    for (std::size_t r = 0; r < prepared.functions.size(); ++r) {
+      const std::size_t global = result.functions.size();
+      result.functions.push_back(first_function + prepared.functions[r]);
+      if (global % stride != 0) continue;
+      const float* row = prepared.rows.row(r);
+      sample_values.insert(sample_values.end(), row, row + lights);
+      sample_norms.push_back(prepared.rows.norms[r]);
+    }
+    for (const std::uint32_t q : prepared.dark_pixels)
+      result.dark_pixels.push_back(std::uint32_t(y) * header.width + q);
+    for (std::size_t v = 0; v < prepared.dark.size(); ++v)
+      result.dark_sum[v] += double(prepared.dark[v]) * double(prepared.dark_pixels.size());
+    for (const std::uint8_t inside : strip.mask)
+      stats.outside_mask += (inside == 0) * header.channels;
+    scratch.append(prepared.rows);
+    progress.advance(std::uint64_t(rows));
+  }
+  progress.finish();
+  result.sample.values =
+      Eigen::Map<RowMatrixF>(sample_values.data(), Eigen::Index(sample_norms.size()), lights);
+  result.sample.norms = std::move(sample_norms);
+  return result;
+}
+
+// One refinement pass over the scratch rows, as an in-memory iteration: every row assigned to its
+// best cluster (its weights refitted into `weights`), then every cluster's F-step by IRLS, each
+// round a pass over the rows (deterministic: each cluster's rows are added in row order by one
+// thread). `assignment` holds every row's cluster of the previous pass (empty before the first).
+StreamedPass refine_pass(const ScratchRows& scratch, std::size_t block_rows,
+                         const ClusteringOptions& options, ClusterModel& bases,
+                         std::vector<std::int32_t>& assignment, RowMatrixF& weights, int pass) {
+  const auto start = Clock::now();
+  StreamedPass record;
+  record.pass = pass;
+  const bool first = assignment.empty();
+  assignment.resize(scratch.rows(), -1);
+  weights.resize(Eigen::Index(scratch.rows()), bases.terms);
+  const int rounds = options.basis_fit.iterations;
+  ProgressReporter progress("compress: refinement pass " + std::to_string(pass),
+                            scratch.rows() * std::uint64_t(rounds + 2), options.quiet);
+  for (std::size_t first_row = 0; first_row < scratch.rows(); first_row += block_rows) {
+    throw_if_interrupted();
+    const std::size_t count = std::min(block_rows, scratch.rows() - first_row);
+    const WorkingRows rows = scratch.read(first_row, count);
+    const std::vector<std::int32_t> current =
+        first ? std::vector<std::int32_t>{}
+              : std::vector<std::int32_t>(assignment.begin() + std::ptrdiff_t(first_row),
+                                          assignment.begin() + std::ptrdiff_t(first_row + count));
+    const AssignmentResult assigned = assign_to_bases(rows, bases, options, current);
+    record.objective += assigned.total_objective();
+    for (std::size_t r = 0; r < count; ++r) {
+      record.changed += !first && assignment[first_row + r] != assigned.best[r];
+      assignment[first_row + r] = assigned.best[r];
+    }
+    weights.middleRows(Eigen::Index(first_row), Eigen::Index(count)) = assigned.weights;
+    progress.advance(count);
+  }
+  std::vector<BasisIrlsFit> fits(
+      std::size_t(bases.clusters),
+      BasisIrlsFit(bases.terms, bases.lights, options.basis_fit.epsilon));
+  for (int round = 0; round <= rounds; ++round) {
+    const bool solve = round < rounds;
+    for (BasisIrlsFit& fit : fits) fit.start_round();
+    for (std::size_t first_row = 0; first_row < scratch.rows(); first_row += block_rows) {
+      throw_if_interrupted();
+      const std::size_t count = std::min(block_rows, scratch.rows() - first_row);
+      const WorkingRows rows = scratch.read(first_row, count);
+      std::vector<std::vector<std::uint32_t>> members(fits.size());
+      for (std::size_t r = 0; r < count; ++r)
+        members[std::size_t(assignment[first_row + r])].push_back(std::uint32_t(r));
+      parallel_for(members.size(), options.threads, [&](std::size_t k, unsigned) {
+        for (const std::uint32_t r : members[k])
+          fits[k].add(rows.row(r), weights.row(Eigen::Index(first_row + r)).data(),
+                      bases.basis(int(k)), !solve);
+      });
+      progress.advance(count);
+    }
+    for (int k = 0; k < bases.clusters; ++k) fits[std::size_t(k)].end_round(bases.basis(k), solve);
+  }
+  progress.finish();
+  for (int k = 0; k < bases.clusters; ++k) fits[std::size_t(k)].finish(bases.basis(k));
+  record.seconds = seconds_since(start);
+  return record;
+}
+
+}  // namespace
+
+StreamedCompression compress_streamed(FieldStripReader& reader, const CompressionOptions& options,
+                                      const CompressionPlan& plan, CompressionStats& stats,
+                                      StreamedTrace& trace, const std::string& scratch_name,
+                                      const IterationHook& hook, const ClusteringResume* resume) {
+  validate_compression_options(options);
+  check_streamable_options(options);
+  const ReflectanceField& header = reader.header();
+  const int lights = header.lights();
+  const ClusteringOptions& clustering = options.clustering;
+  if (clustering.terms >= lights)
+    throw Error("terms per cluster (" + std::to_string(clustering.terms) +
+                ") must be fewer than the lights (" + std::to_string(lights) + ")");
+  stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : header.noise_floor;
+  stats.residual_threshold =
+      options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
+
+  // 1. Read: scratch rows, the sample, the dark model's sums.
+  auto start = Clock::now();
+  ScratchRows scratch(plan.scratch_folder, scratch_name, lights);
+  ReadResult read = read_strips(reader, options, plan, stats.noise_floor, scratch, stats);
+  trace.strips = (header.height + plan.strip_rows - 1) / plan.strip_rows;
+  trace.sample_rows = read.sample.rows();
+  trace.scratch_bytes = scratch.bytes();
+  stats.functions = std::int64_t(header.pixels()) * header.channels;
+  stats.stored_rows = read.functions.size();
+  stats.dark_pixels = read.dark_pixels.size();
+  stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows) -
+                   std::int64_t(stats.dark_pixels) * header.channels;
+  stats.clusters_asked = clustering.clusters;
+  trace.read_seconds = stats.prepare_seconds = seconds_since(start);
+
+  // 2. Fit on the sample.
+  start = Clock::now();
+  ClusterModel model = cluster_prepared_rows(read.sample, lights, options, stats, hook, resume);
+  trace.sample_clustering_seconds = seconds_since(start);
+  read.sample = {};
+
+  // 3. Refine over the scratch rows.
+  const auto refine_start = Clock::now();
+  ClusterModel bases;
+  bases.terms = model.terms;
+  bases.lights = model.lights;
+  bases.clusters = model.clusters;
+  bases.bases = std::move(model.bases);
+  model = {};
+  const std::size_t block_rows =
+      std::max<std::size_t>(1, std::size_t(plan.strip_rows) * header.width * header.channels);
+  std::vector<std::int32_t> assignment;
+  RowMatrixF weights;
+  // Like the in-memory iterations, the passes stop once few rows change cluster.
+  for (int pass = 1; bases.clusters > 0 && pass <= options.refine_iterations; ++pass) {
+    trace.passes.push_back(
+        refine_pass(scratch, block_rows, clustering, bases, assignment, weights, pass));
+    if (pass > 1 &&
+        double(trace.passes.back().changed) <= clustering.settle_fraction * double(scratch.rows()))
+      break;
+  }
+  weights = {};
+  trace.refine_seconds = seconds_since(refine_start);
+  stats.clustering_seconds = seconds_since(start);
+
+  // 4. Build: the strips again, assigned to the final bases.
+  start = Clock::now();
+  std::vector<float> dark(read.dark_sum.size());
+  for (std::size_t v = 0; v < dark.size(); ++v)
+    dark[v] =
+        read.dark_pixels.empty() ? 0.0f : float(read.dark_sum[v] / double(read.dark_pixels.size()));
+  stats.residual_entries = options.residual.entries_for(lights);
+  const int cap = row_cap(options, lights);
+  const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
+  constexpr std::size_t levels = std::size(sparseness_thresholds);
+  std::vector<double> sparse(levels, 0.0), peak;
+  StreamedPass build;
+  build.pass = int(trace.passes.size()) + 1;
+  StreamedCompression result;
+  CompressedField& out = result.field;
+  // The quantization's original rows: whole pixel rows, evenly spaced, about as many functions
+  // as it measures.
+  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
+  const int sample_every = int(std::max<std::int64_t>(
+      1, header.height /
+             std::max<std::int64_t>(1, std::int64_t(plan.quantization_rows) / row_functions)));
+  std::size_t row = 0;
+  const auto throw_changed = [&](std::size_t rows_now) {
+    throw Error("the field " + reader.path().string() +
+                " changed while it was compressed: its second reading has at least " +
+                std::to_string(rows_now) + " stored functions, the first " +
+                std::to_string(read.functions.size()));
+  };
+  ProgressReporter progress("compress: building strips", std::uint64_t(header.height),
+                            clustering.quiet);
+  reader.rewind();
+  for (int y = 0; y < header.height; y += plan.strip_rows) {
+    throw_if_interrupted();
+    const int rows = std::min(plan.strip_rows, header.height - y);
+    const ReflectanceField strip = reader.read(y, rows);
+    PreparedRows prepared = prepare_rows(strip, options.transform == BasisTransform::haar,
+                                         stats.noise_floor, clustering.threads);
+    prepared.dark = read.dark_pixels.empty() ? std::vector<float>{} : dark;
+    ClusterModel strip_model = bases;
+    if (prepared.rows.rows() > 0) {
+      const std::size_t count = prepared.rows.rows();
+      if (row + count > read.functions.size()) throw_changed(row + count);
+      const std::vector<std::int32_t> current =
+          assignment.empty()
+              ? std::vector<std::int32_t>{}
+              : std::vector<std::int32_t>(assignment.begin() + std::ptrdiff_t(row),
+                                          assignment.begin() + std::ptrdiff_t(row + count));
+      AssignmentResult assigned = assign_to_bases(prepared.rows, bases, clustering, current);
+      build.objective += assigned.total_objective();
+      for (std::size_t r = 0; r < assigned.best.size(); ++r)
+        build.changed += !assignment.empty() && assignment[row + r] != assigned.best[r];
+      strip_model.assignment = std::move(assigned.best);
+      strip_model.weights = std::move(assigned.weights);
+    }
+    CompressionStats strip_stats;
+    const CompressedField part =
+        build_compressed_field(strip, prepared, strip_model, options.transform, cap,
+                               stats.residual_threshold, {}, strip_stats, clustering.threads);
+    for (std::size_t level = 0; level < levels; ++level)
+      sparse[level] += strip_stats.sparseness[level] * double(prepared.rows.rows());
+    if (by_peak)
+      for (const std::uint32_t p : part.stored_function)
+        peak.push_back(strip.values.row(p).cwiseAbs().maxCoeff());
+    row += prepared.rows.rows();
+    append_compressed_rows(out, part);
+    for (int r = (y + sample_every - 1) / sample_every * sample_every; r < y + rows;
+         r += sample_every) {
+      append_field_rows(result.original_sample, strip, r - y, 1);
+      result.sample_rows.emplace_back(r, 1);
+    }
+    progress.advance(std::uint64_t(rows));
+  }
+  progress.finish();
+  build.seconds = seconds_since(start);
+  trace.passes.push_back(build);
+  if (row != read.functions.size()) throw_changed(row);
+  out.clusters = bases.clusters;
+  out.bases = bases.bases;
+  if (by_peak)
+    keep_largest_relative_to_peak(out.residual, peak,
+                                  std::size_t(stats.residual_entries) * out.stored_rows());
+  stats.residual_nonzeros = out.residual.nonzeros();
+  stats.sparseness.assign(levels, 0.0);
+  for (std::size_t level = 0; level < levels; ++level)
+    stats.sparseness[level] = row == 0 ? 0.0 : sparse[level] / double(row);
+  stats.clusters = bases.clusters;
+  stats.residual_seconds = trace.build_seconds = seconds_since(start);
+  return result;
+}
+
+FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
+                                    const CompressedField& stored, const CompressedField& float32,
+                                    int residual_entries, double white,
+                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                    RelativeError& float32_masked, bool quiet) {
+  const ReflectanceField& header = reader.header();
+  FieldErrors total;
+  float32_masked = {};
+  ProgressReporter progress("compress: measuring the error", std::uint64_t(header.height), quiet);
+  reader.rewind();
+  for (int y = 0; y < header.height; y += strip_rows) {
+    throw_if_interrupted();
+    const int rows = std::min(strip_rows, header.height - y);
+    const ReflectanceField strip = reader.read(y, rows);
+    std::vector<std::uint8_t> strip_mask;
+    if (!psnr_mask.empty())
+      strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
+                        psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
+    const std::int64_t first_function = std::int64_t(y) * header.width * header.channels;
+    merge_field_errors(total,
+                       measure_field_errors(strip, compressed_rows(stored, y, rows),
+                                            residual_entries, white, strip_mask, threads),
+                       first_function);
+    const RelativeError before = relative_error(strip, compressed_rows(float32, y, rows), true,
+                                                all_residual_entries, threads);
+    merge_relative_errors(float32_masked, before);
+    progress.advance(std::uint64_t(rows));
+  }
+  progress.finish();
+  return total;
+}
+
+}  // namespace relume

@@ -1,0 +1,98 @@
+// Compression of a field larger than memory (the streamed plan): the field is read strip by
+// strip (field/field_strips.hpp) and never held whole.
+//  1. Read: every strip's functions are prepared (compress/cluster_model.hpp) and their unit rows
+//     go to a float16 scratch file (compress/scratch_rows.hpp); every s-th row, in scan order
+//     (a spatially stratified sample), is kept in memory.
+//  2. Fit on the sample: the clusters are found on the sample as on a whole field, with its
+//     checkpoints and --resume.
+//  3. Refine: each pass streams the scratch rows block by block, assigns them to the clusters
+//     (their W refitted) and sums every cluster's IRLS normal equations for the F-step
+//     (compress/cluster_basis.hpp), which add across blocks; the new bases follow each pass.
+//  4. Build: the strips are read again; each is assigned to the final bases and its residual cut
+//     (build_compressed_field), and the strips' compressed fields are stacked.
+// The memory plan (plan_compression) says whether a field needs this and with what strips.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compress/clustered_factorization.hpp"
+#include "compress/field_errors.hpp"
+#include "field/field_strips.hpp"
+
+namespace relume {
+
+struct CompressionPlan {
+  bool streamed = false;
+  std::uint64_t budget = 0;           // bytes the run may use for its data
+  std::string budget_source;          // "--memory-limit", "MemAvailable", ...
+  std::uint64_t field_bytes = 0;      // the field as float32
+  std::uint64_t in_memory_bytes = 0;  // estimated need of the in-memory path
+  // Streamed only:
+  int strip_rows = 0;                 // pixel rows per strip
+  std::size_t sample_rows = 0;        // the clustering sample's rows, at most
+  std::size_t quantization_rows = 0;  // original functions kept to choose the quantization on
+  std::uint64_t model_bytes = 0;      // the compressed field, its copies and the pass state
+  std::uint64_t scratch_bytes = 0;    // the scratch file, at most
+  std::filesystem::path scratch_folder;
+
+  std::string describe() const;  // one line for the user
+};
+
+// The plan for a field of `header`'s shape (values empty; mask set) within `budget` bytes, with
+// `threads` workers: in memory when the estimate fits, else streamed with the tallest strips and
+// the largest sample that fit. Throws Error with the numbers when even a one-row strip and the
+// model do not fit.
+CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
+                                 std::uint64_t budget, const std::string& budget_source,
+                                 unsigned threads, const std::filesystem::path& scratch_folder);
+
+// Throws Error naming the first option that needs the whole field in memory (clustered PCA,
+// multi-resolution, light weighting, the trimmed refit, an exact refit).
+void check_streamable_options(const CompressionOptions& options);
+
+struct StreamedPass {
+  int pass = 0;             // 1, 2, ... (the refinement passes), then the build pass
+  double objective = 0;     // sum of the rows' L1 residual under the bases assigned to
+  std::size_t changed = 0;  // rows whose cluster changed since the previous pass
+  double seconds = 0;
+};
+
+struct StreamedTrace {
+  std::size_t sample_rows = 0;
+  std::uint64_t scratch_bytes = 0;
+  int strips = 0;
+  double read_seconds = 0, sample_clustering_seconds = 0, refine_seconds = 0, build_seconds = 0;
+  std::vector<StreamedPass> passes;
+};
+
+struct StreamedCompression {
+  CompressedField field;  // float32, as compress_field returns it
+  // Evenly spaced pixel rows of the original, stacked, and where they are (first row, rows):
+  // what the quantization is chosen against (store_with_precision_on_strips).
+  ReflectanceField original_sample;
+  std::vector<std::pair<int, int>> sample_rows;
+};
+
+// Compresses the field `reader` reads with `plan` (streamed); the scratch file is
+// `.tmp-<pid>-<scratch_name>` in the plan's folder. `hook` and `resume` apply to the sample's
+// clustering (checkpoints of the sample's model). `stats` is filled as compress_field fills it.
+StreamedCompression compress_streamed(FieldStripReader& reader, const CompressionOptions& options,
+                                      const CompressionPlan& plan, CompressionStats& stats,
+                                      StreamedTrace& trace, const std::string& scratch_name,
+                                      const IterationHook& hook = {},
+                                      const ClusteringResume* resume = nullptr);
+
+// The report's errors of `stored` against the field `reader` reads, strip by strip
+// (field_errors.hpp), and in `float32_masked` the Eq. 16 error over the masked functions of
+// `float32`, the same compression before it was quantized.
+FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
+                                    const CompressedField& stored, const CompressedField& float32,
+                                    int residual_entries, double white,
+                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                    RelativeError& float32_masked, bool quiet);
+
+}  // namespace relume
