@@ -29,6 +29,7 @@
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "core/ranks.hpp"
 #include "field/mask_file.hpp"
 #include "field_input_options.hpp"
 #include "json_report.hpp"
@@ -209,11 +210,10 @@ void check_streamable_arguments(const CompressArguments& arguments) {
 }
 
 nlohmann::ordered_json plan_json(const CompressionPlan& plan) {
-  nlohmann::ordered_json json = {{"streamed", plan.streamed},
-                                 {"budget_bytes", plan.budget},
-                                 {"budget_source", plan.budget_source},
-                                 {"field_bytes", plan.field_bytes},
-                                 {"in_memory_bytes", plan.in_memory_bytes}};
+  nlohmann::ordered_json json = {
+      {"streamed", plan.streamed},       {"ranks", process_ranks().size()},
+      {"budget_bytes", plan.budget},     {"budget_source", plan.budget_source},
+      {"field_bytes", plan.field_bytes}, {"in_memory_bytes", plan.in_memory_bytes}};
   if (plan.streamed) {
     json["strip_rows"] = plan.strip_rows;
     json["sample_rows"] = plan.sample_rows;
@@ -233,6 +233,8 @@ nlohmann::ordered_json streamed_json(const StreamedTrace& trace) {
                       {"changed", pass.changed},
                       {"seconds", pass.seconds}});
   return {{"strips", trace.strips},
+          {"rank_compute_seconds", trace.rank_compute_seconds},
+          {"rank_bytes_sent", trace.rank_bytes_sent},
           {"sample_rows", trace.sample_rows},
           {"scratch_bytes", trace.scratch_bytes},
           {"passes", passes},
@@ -258,8 +260,10 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   const auto [budget, budget_source] = planning_budget();
   const fs::path scratch_folder =
       arguments.scratch.empty() ? fs::absolute(output).parent_path() : fs::path(arguments.scratch);
-  const CompressionPlan plan =
-      plan_compression(reader->header(), options, budget, budget_source, threads, scratch_folder);
+  // Several ranks (mpirun) always stream: each reads its own band of pixel rows.
+  Ranks& ranks = process_ranks();
+  const CompressionPlan plan = plan_compression(reader->header(), options, budget, budget_source,
+                                                threads, scratch_folder, ranks.size() > 1);
   note("compress: %s", plan.describe().c_str());
   if (plan.streamed) {
     check_streamable_arguments(arguments);
@@ -279,7 +283,9 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
 
   const fs::path checkpoint = output.string() + ".checkpoint";
   std::string print = fingerprint(input, arguments.field_input, options);
-  if (plan.streamed) print += " streamed sample " + std::to_string(plan.sample_rows);
+  if (plan.streamed)
+    print += " streamed sample " + std::to_string(plan.sample_rows) + " ranks " +
+             std::to_string(ranks.size());
   std::optional<ClusteringResume> resume;
   if (arguments.resume && fs::exists(checkpoint)) {
     resume = read_checkpoint(checkpoint, print);
@@ -315,6 +321,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     StreamedCompression result = compress_streamed(
         *reader, options, plan, stats, streamed.emplace(), output.filename().string() + ".scratch",
         hook, resume ? &*resume : nullptr);
+    if (!ranks.root()) return nlohmann::ordered_json();  // the root writes and reports
     quantize_start = Clock::now();
     compressed = std::move(result.field);
     stored = compressed;
@@ -493,7 +500,8 @@ void run_compress(CompressArguments& arguments) {
   for (std::size_t i = 0; i < arguments.inputs.size(); ++i) {
     const std::string& input = arguments.inputs[i];
     const fs::path& output = outputs[i];
-    if (!several) {
+    // Under mpirun a failure ends every rank (the others would wait for it): no catching.
+    if (!several || process_ranks().size() > 1) {
       reports.push_back(compress_one(input, output, arguments, options, opencl.get()));
       continue;
     }
@@ -506,7 +514,7 @@ void run_compress(CompressArguments& arguments) {
       failures.push_back({{"input", input}, {"error", e.what()}});
     }
   }
-  if (!arguments.report.empty()) {
+  if (!arguments.report.empty() && process_ranks().root()) {
     const nlohmann::ordered_json document =
         several ? nlohmann::ordered_json{{"runs", reports}, {"failed", failures}} : reports[0];
     write_json_report(arguments.report, document);

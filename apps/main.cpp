@@ -25,6 +25,9 @@
 #include "core/parallel.hpp"
 #include "core/signals.hpp"
 #include "output_paths.hpp"
+#ifdef RELUME_HAVE_MPI
+#include "mpi_ranks.hpp"
+#endif
 
 namespace {
 
@@ -100,17 +103,21 @@ std::string failure_message(const std::exception& e) {
   return std::string("internal error: ") + e.what();
 }
 
+// What messages begin with: "relume", or under mpirun "relume (rank 2 of 3)".
+std::string speaker = "relume";
+
 // 128 + the signal that interrupted the run (130 for SIGINT, 143 for SIGTERM).
 int interrupted_exit() {
   const int signal_number = relume::interrupting_signal();
-  std::fprintf(stderr, "relume: interrupted (%s); no output was half-written\n",
+  std::fprintf(stderr, "%s: interrupted (%s); no output was half-written\n", speaker.c_str(),
                signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
   return 128 + (signal_number ? signal_number : SIGINT);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// Parses the command line and runs the command; returns the exit status.
+int run(int argc, char** argv) {
   CLI::App app{
       "relume: compress one-light-at-a-time reflectance fields with clustered sparse residual\n"
       "factorization and relight them in real time with OpenCL (PoCL on CPUs, any GPU driver).\n"
@@ -181,14 +188,35 @@ int main(int argc, char** argv) {
     return interrupted_exit();
   } catch (const relume::Error& e) {
     if (relume::interrupting_signal()) return interrupted_exit();
-    std::fprintf(stderr, "relume: error: %s\n", e.what());
+    std::fprintf(stderr, "%s: error: %s\n", speaker.c_str(), e.what());
     return 1;
   } catch (const std::exception& e) {
     if (relume::interrupting_signal()) return interrupted_exit();
-    std::fprintf(stderr, "relume: %s\n", failure_message(e).c_str());
+    std::fprintf(stderr, "%s: %s\n", speaker.c_str(), failure_message(e).c_str());
     return 1;
   }
   if (relume::interrupting_signal()) return interrupted_exit();
   relume::detail("relume: %s done in %.2f s", word.c_str(), relume::seconds_since(start));
   return 0;
+}
+
+int main(int argc, char** argv) {
+#ifdef RELUME_HAVE_MPI
+  // Under mpirun the ranks run the same command; rank 0 speaks, the others only of failures, and
+  // a failure on any rank ends them all with its message (the others would wait for it).
+  relume::MpiRun mpi(&argc, &argv);
+  if (mpi.several()) {
+    speaker =
+        "relume (rank " + std::to_string(mpi.rank()) + " of " + std::to_string(mpi.size()) + ")";
+    if (mpi.rank() != 0) relume::set_verbosity(relume::Verbosity::quiet);
+  }
+  const int status = run(argc, argv);
+  if (status != 0 && mpi.several()) {
+    std::fflush(stderr);
+    mpi.abort_all(status);
+  }
+  return status;
+#else
+  return run(argc, argv);
+#endif
 }

@@ -2,6 +2,7 @@
 // see lib/synth/synthetic_scene.hpp) and writes it as a field folder that every other command
 // reads.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "command_registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
+#include "core/memory_budget.hpp"
 #include "core/progress.hpp"
 #include "field/field_folder_writer.hpp"
 #include "output_paths.hpp"
@@ -49,7 +51,17 @@ void run_synth(const SynthArguments& arguments) {
   validate_synth_options(options);
   check_output_folder(arguments.output);
 
-  // Rendered and written strip by strip: the field need not fit in memory.
+  // Rendered and written strip by strip: the field need not fit in memory, a row (rendered, and
+  // the writer's copy) and the mask must; strips take at most a quarter of the budget.
+  const std::uint64_t row_bytes =
+      std::uint64_t(options.width) * 3 * std::uint64_t(options.lights) * sizeof(float);
+  check_memory_need(2 * row_bytes + std::uint64_t(options.width) * std::uint64_t(options.height),
+                    "a synthetic field of " + std::to_string(options.width) + "x" +
+                        std::to_string(options.height) + " pixels and " +
+                        std::to_string(options.lights) + " lights, written a row at a time,");
+  StripLimits limits;
+  limits.strip_bytes = std::size_t(
+      std::clamp<std::uint64_t>(memory_budget().bytes / 4, row_bytes, limits.strip_bytes));
   const SyntheticRenderer renderer(options);
   const ReflectanceField& header = renderer.header();
   const FieldFolderLayout layout{header.width,      header.height,      header.channels,
@@ -62,7 +74,8 @@ void run_synth(const SynthArguments& arguments) {
   // Into a temporary folder renamed at the end: a failure (a full disk) exposes nothing.
   write_folder_atomically(arguments.output, [&](const std::filesystem::path& temp) {
     write_field_folder_in_strips(
-        temp, layout, [&](int first_row, int rows, int first_light, int lights, float* values) {
+        temp, layout,
+        [&](int first_row, int rows, int first_light, int lights, float* values) {
           const auto render_start = std::chrono::steady_clock::now();
           const ReflectanceField strip = renderer.render_rows(first_row, rows);
           render_seconds +=
@@ -70,7 +83,8 @@ void run_synth(const SynthArguments& arguments) {
                   .count();
           fill_strip_from(strip, first_row, first_row, rows, first_light, lights, values);
           if (first_light == 0) progress.advance(std::uint64_t(rows));
-        });
+        },
+        limits);
   });
   progress.finish();
   const double write_seconds =

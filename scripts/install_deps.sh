@@ -12,6 +12,7 @@ packages=(
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   clang libclang-rt-14-dev locales-all
   libcpp-httplib-dev chromium chromium-driver python3-selenium
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -35,19 +35,15 @@ BasisIrlsFit::BasisIrlsFit(int terms, int lights, float epsilon)
     : terms_(terms),
       lights_(lights),
       epsilon_(epsilon),
-      gram_(std::size_t(terms) * (terms + 1) / 2 * lights),
-      rhs_(std::size_t(terms) * lights),
-      objective_(lights),
+      rhs_offset_(std::size_t(terms) * (terms + 1) / 2 * lights),
+      objective_offset_(rhs_offset_ + std::size_t(terms) * lights),
+      sums_(objective_offset_ + std::size_t(lights)),
       best_objective_(lights, HUGE_VAL),
       best_(std::size_t(terms) * lights),
       residual_(lights),
       inverse_(lights) {}
 
-void BasisIrlsFit::start_round() {
-  std::fill(gram_.begin(), gram_.end(), 0.0);
-  std::fill(rhs_.begin(), rhs_.end(), 0.0);
-  std::fill(objective_.begin(), objective_.end(), 0.0);
-}
+void BasisIrlsFit::start_round() { std::fill(sums_.begin(), sums_.end(), 0.0); }
 
 void BasisIrlsFit::add(const float* x, const float* w, const float* basis, bool objective_only) {
   const int terms = terms_, lights = lights_;
@@ -56,9 +52,10 @@ void BasisIrlsFit::add(const float* x, const float* w, const float* basis, bool 
     const float* f = basis + std::size_t(j) * lights;
     for (int i = 0; i < lights; ++i) residual_[i] -= w[j] * f[i];
   }
+  double* objective = sums_.data() + objective_offset_;
   for (int i = 0; i < lights; ++i) {
     const double magnitude = std::fabs(residual_[i]);
-    objective_[i] += magnitude;
+    objective[i] += magnitude;
     inverse_[i] = 1.0 / std::max<double>(magnitude, epsilon_);
   }
   if (objective_only) return;
@@ -66,10 +63,10 @@ void BasisIrlsFit::add(const float* x, const float* w, const float* basis, bool 
   for (int j = 0; j < terms; ++j) {
     for (int l = 0; l <= j; ++l, ++pair) {
       const double product = double(w[j]) * w[l];
-      double* g = gram_.data() + std::size_t(pair) * lights;
+      double* g = sums_.data() + std::size_t(pair) * lights;
       for (int i = 0; i < lights; ++i) g[i] += inverse_[i] * product;
     }
-    double* b = rhs_.data() + std::size_t(j) * lights;
+    double* b = sums_.data() + rhs_offset_ + std::size_t(j) * lights;
     const double wj = w[j];
     for (int i = 0; i < lights; ++i) b[i] += inverse_[i] * wj * x[i];
   }
@@ -77,9 +74,10 @@ void BasisIrlsFit::add(const float* x, const float* w, const float* basis, bool 
 
 void BasisIrlsFit::end_round(float* basis, bool solve) {
   const int terms = terms_, lights = lights_;
+  const double* objective = sums_.data() + objective_offset_;
   for (int i = 0; i < lights; ++i) {
-    if (objective_[i] < best_objective_[i]) {
-      best_objective_[i] = objective_[i];
+    if (objective[i] < best_objective_[i]) {
+      best_objective_[i] = objective[i];
       for (int j = 0; j < terms; ++j)
         best_[std::size_t(j) * lights + i] = basis[std::size_t(j) * lights + i];
     }
@@ -90,8 +88,8 @@ void BasisIrlsFit::end_round(float* basis, bool solve) {
     int pair = 0;
     for (int j = 0; j < terms; ++j) {
       for (int l = 0; l <= j; ++l, ++pair)
-        g[j * terms + l] = g[l * terms + j] = gram_[std::size_t(pair) * lights + i];
-      b[j] = rhs_[std::size_t(j) * lights + i];
+        g[j * terms + l] = g[l * terms + j] = sums_[std::size_t(pair) * lights + i];
+      b[j] = sums_[rhs_offset_ + std::size_t(j) * lights + i];
     }
     solve_small_spd(g, b, terms);
     for (int j = 0; j < terms; ++j) basis[std::size_t(j) * lights + i] = static_cast<float>(b[j]);

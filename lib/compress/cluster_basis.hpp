@@ -47,11 +47,16 @@ class BasisIrlsFit {
   // residual.
   double finish(float* basis) const;
 
+  // The round's sums, one array (to add up the sums of rows held by other processes).
+  std::vector<double>& sums() { return sums_; }
+
  private:
   int terms_, lights_;
   float epsilon_;
-  std::vector<double> gram_, rhs_;  // per light: pairs j >= l, then terms
-  std::vector<double> objective_, best_objective_;
+  std::size_t rhs_offset_, objective_offset_;
+  // Per light: the Gram's pairs j >= l, then the right-hand side's terms, then the L1 residual.
+  std::vector<double> sums_;
+  std::vector<double> best_objective_;
   std::vector<float> best_;
   std::vector<float> residual_;
   std::vector<double> inverse_;

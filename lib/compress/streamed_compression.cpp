@@ -9,12 +9,14 @@
 
 #include "compress/cluster_basis.hpp"
 #include "compress/peak_residual_allocation.hpp"
+#include "compress/rank_exchange.hpp"
 #include "compress/scratch_rows.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/interruption.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "core/ranks.hpp"
 #include "model/compressed_field_rows.hpp"
 #include "model/quantization.hpp"
 #include "model/reconstruct_field.hpp"
@@ -70,7 +72,8 @@ std::string CompressionPlan::describe() const {
 
 CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
                                  std::uint64_t budget, const std::string& budget_source,
-                                 unsigned threads, const std::filesystem::path& scratch_folder) {
+                                 unsigned threads, const std::filesystem::path& scratch_folder,
+                                 bool stream_anyway) {
   const std::uint64_t lights = std::uint64_t(header.lights());
   const std::uint64_t terms = std::uint64_t(options.clustering.terms);
   const std::uint64_t clusters = std::uint64_t(options.clustering.clusters);
@@ -85,7 +88,7 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   const std::uint64_t compressed =
       functions * (terms * 4 + std::uint64_t(row_cap(options, int(lights))) * 8 + 8) * 3;
   plan.in_memory_bytes = 2 * plan.field_bytes + compressed;
-  if (plan.in_memory_bytes <= budget) return plan;
+  if (plan.in_memory_bytes <= budget && !stream_anyway) return plan;
 
   plan.streamed = true;
   plan.scratch_folder = scratch_folder;
@@ -165,17 +168,19 @@ AssignmentResult assign_to_bases(const WorkingRows& rows, const ClusterModel& ba
   return assign_to_best_cluster(rows, bases, candidates, options.weight_fit, options.threads);
 }
 
-// What pass 1 keeps of the field besides the scratch rows.
+// What pass 1 keeps of this rank's rows besides the scratch rows.
 struct ReadResult {
-  std::vector<std::uint32_t> functions;    // stored row -> function, ascending
-  std::vector<std::uint32_t> dark_pixels;  // ascending
-  std::vector<double> dark_sum;            // channels x lights, in the rows' basis
+  std::size_t stored_rows = 0;
+  std::size_t dark_pixels = 0;
+  std::int64_t outside_mask = 0;  // functions
+  std::vector<double> dark_sum;   // channels x lights, in the rows' basis
   WorkingRows sample;
 };
 
+// Pixel rows [begin_row, end_row): this rank's share of the field.
 ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& options,
-                       const CompressionPlan& plan, float noise_floor, ScratchRows& scratch,
-                       CompressionStats& stats) {
+                       const CompressionPlan& plan, float noise_floor, int begin_row, int end_row,
+                       ScratchRows& scratch) {
   const ReflectanceField& header = reader.header();
   const int lights = header.lights();
   const bool haar = options.transform == BasisTransform::haar;
@@ -185,30 +190,26 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
   ReadResult result;
   result.dark_sum.assign(std::size_t(header.channels) * lights, 0.0);
   std::vector<float> sample_values, sample_norms;
-  ProgressReporter progress("compress: reading strips", std::uint64_t(header.height),
+  ProgressReporter progress("compress: reading strips", std::uint64_t(end_row - begin_row),
                             options.clustering.quiet);
   reader.rewind();
-  for (int y = 0; y < header.height; y += plan.strip_rows) {
+  for (int y = begin_row; y < end_row; y += plan.strip_rows) {
     throw_if_interrupted();
-    const int rows = std::min(plan.strip_rows, header.height - y);
+    const int rows = std::min(plan.strip_rows, end_row - y);
     const ReflectanceField strip = reader.read(y, rows);
     const PreparedRows prepared =
         prepare_rows(strip, haar, noise_floor, options.clustering.threads);
-    const std::uint32_t first_function = std::uint32_t(y) * header.width * header.channels;
-    for (std::size_t r = 0; r < prepared.functions.size(); ++r) {
-      const std::size_t global = result.functions.size();
-      result.functions.push_back(first_function + prepared.functions[r]);
-      if (global % stride != 0) continue;
+    for (std::size_t r = 0; r < prepared.functions.size(); ++r, ++result.stored_rows) {
+      if (result.stored_rows % stride != 0) continue;
       const float* row = prepared.rows.row(r);
       sample_values.insert(sample_values.end(), row, row + lights);
       sample_norms.push_back(prepared.rows.norms[r]);
     }
-    for (const std::uint32_t q : prepared.dark_pixels)
-      result.dark_pixels.push_back(std::uint32_t(y) * header.width + q);
+    result.dark_pixels += prepared.dark_pixels.size();
     for (std::size_t v = 0; v < prepared.dark.size(); ++v)
       result.dark_sum[v] += double(prepared.dark[v]) * double(prepared.dark_pixels.size());
     for (const std::uint8_t inside : strip.mask)
-      stats.outside_mask += (inside == 0) * header.channels;
+      result.outside_mask += (inside == 0) * header.channels;
     scratch.append(prepared.rows);
     progress.advance(std::uint64_t(rows));
   }
@@ -219,11 +220,13 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
   return result;
 }
 
-// One refinement pass over the scratch rows, as an in-memory iteration: every row assigned to its
-// best cluster (its weights refitted into `weights`), then every cluster's F-step by IRLS, each
-// round a pass over the rows (deterministic: each cluster's rows are added in row order by one
-// thread). `assignment` holds every row's cluster of the previous pass (empty before the first).
-StreamedPass refine_pass(const ScratchRows& scratch, std::size_t block_rows,
+// One refinement pass over this rank's scratch rows, as an in-memory iteration: every row
+// assigned to its best cluster (its weights refitted into `weights`), then every cluster's
+// F-step by IRLS, each round a pass over the rows whose sums the root adds up over the ranks and
+// solves (deterministic: each cluster's rows are added in row order by one thread, and the ranks'
+// sums in rank order). `assignment` holds every row's cluster of the previous pass (empty before
+// the first). The record's objective and changed rows are over all ranks.
+StreamedPass refine_pass(Ranks& ranks, const ScratchRows& scratch, std::size_t block_rows,
                          const ClusteringOptions& options, ClusterModel& bases,
                          std::vector<std::int32_t>& assignment, RowMatrixF& weights, int pass) {
   const auto start = Clock::now();
@@ -235,6 +238,7 @@ StreamedPass refine_pass(const ScratchRows& scratch, std::size_t block_rows,
   const int rounds = options.basis_fit.iterations;
   ProgressReporter progress("compress: refinement pass " + std::to_string(pass),
                             scratch.rows() * std::uint64_t(rounds + 2), options.quiet);
+  double totals[2] = {0, 0};  // L1 residual, changed rows
   for (std::size_t first_row = 0; first_row < scratch.rows(); first_row += block_rows) {
     throw_if_interrupted();
     const std::size_t count = std::min(block_rows, scratch.rows() - first_row);
@@ -244,14 +248,17 @@ StreamedPass refine_pass(const ScratchRows& scratch, std::size_t block_rows,
               : std::vector<std::int32_t>(assignment.begin() + std::ptrdiff_t(first_row),
                                           assignment.begin() + std::ptrdiff_t(first_row + count));
     const AssignmentResult assigned = assign_to_bases(rows, bases, options, current);
-    record.objective += assigned.total_objective();
+    totals[0] += assigned.total_objective();
     for (std::size_t r = 0; r < count; ++r) {
-      record.changed += !first && assignment[first_row + r] != assigned.best[r];
+      totals[1] += !first && assignment[first_row + r] != assigned.best[r];
       assignment[first_row + r] = assigned.best[r];
     }
     weights.middleRows(Eigen::Index(first_row), Eigen::Index(count)) = assigned.weights;
     progress.advance(count);
   }
+  ranks.sum_everywhere(totals, 2);
+  record.objective = totals[0];
+  record.changed = std::size_t(totals[1]);
   std::vector<BasisIrlsFit> fits(
       std::size_t(bases.clusters),
       BasisIrlsFit(bases.terms, bases.lights, options.basis_fit.epsilon));
@@ -272,12 +279,95 @@ StreamedPass refine_pass(const ScratchRows& scratch, std::size_t block_rows,
       });
       progress.advance(count);
     }
-    for (int k = 0; k < bases.clusters; ++k) fits[std::size_t(k)].end_round(bases.basis(k), solve);
+    sum_fits_to_root(ranks, fits);
+    if (ranks.root())
+      for (int k = 0; k < bases.clusters; ++k)
+        fits[std::size_t(k)].end_round(bases.basis(k), solve);
+    broadcast_bases(ranks, bases);
   }
   progress.finish();
-  for (int k = 0; k < bases.clusters; ++k) fits[std::size_t(k)].finish(bases.basis(k));
+  if (ranks.root())
+    for (int k = 0; k < bases.clusters; ++k) fits[std::size_t(k)].finish(bases.basis(k));
+  broadcast_bases(ranks, bases);
   record.seconds = seconds_since(start);
   return record;
+}
+
+// The build pass over this rank's rows [begin_row, end_row): the strips read again, assigned to
+// the final bases (the last pass's clusters among the candidates) and built.
+BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options,
+                     const CompressionPlan& plan, const CompressionStats& stats,
+                     const ClusterModel& bases, const std::vector<float>& dark,
+                     const std::vector<std::int32_t>& assignment, std::size_t stored_rows,
+                     int begin_row, int end_row) {
+  const ReflectanceField& header = reader.header();
+  const ClusteringOptions& clustering = options.clustering;
+  const int lights = header.lights();
+  const int cap = row_cap(options, lights);
+  const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
+  BuiltPart part;
+  part.sparse_counts.assign(std::size(sparseness_thresholds), 0.0);
+  // The quantization's original rows: whole pixel rows, evenly spaced over the field, about as
+  // many functions as it measures.
+  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
+  const int sample_every = int(std::max<std::int64_t>(
+      1, header.height /
+             std::max<std::int64_t>(1, std::int64_t(plan.quantization_rows) / row_functions)));
+  std::size_t row = 0;
+  const auto throw_changed = [&](std::size_t rows_now) {
+    throw Error("the field " + reader.path().string() +
+                " changed while it was compressed: its second reading has at least " +
+                std::to_string(rows_now) + " stored functions in rows " +
+                std::to_string(begin_row) + " to " + std::to_string(end_row) + ", the first " +
+                std::to_string(stored_rows));
+  };
+  ProgressReporter progress("compress: building strips", std::uint64_t(end_row - begin_row),
+                            clustering.quiet);
+  reader.rewind();
+  for (int y = begin_row; y < end_row; y += plan.strip_rows) {
+    throw_if_interrupted();
+    const int rows = std::min(plan.strip_rows, end_row - y);
+    const ReflectanceField strip = reader.read(y, rows);
+    PreparedRows prepared = prepare_rows(strip, options.transform == BasisTransform::haar,
+                                         stats.noise_floor, clustering.threads);
+    prepared.dark = dark;
+    ClusterModel strip_model = bases;
+    const std::size_t count = prepared.rows.rows();
+    if (row + count > stored_rows) throw_changed(row + count);
+    if (count > 0) {
+      const std::vector<std::int32_t> current =
+          assignment.empty()
+              ? std::vector<std::int32_t>{}
+              : std::vector<std::int32_t>(assignment.begin() + std::ptrdiff_t(row),
+                                          assignment.begin() + std::ptrdiff_t(row + count));
+      AssignmentResult assigned = assign_to_bases(prepared.rows, bases, clustering, current);
+      part.objective += assigned.total_objective();
+      for (std::size_t r = 0; r < count; ++r)
+        part.changed += !current.empty() && current[r] != assigned.best[r];
+      strip_model.assignment = std::move(assigned.best);
+      strip_model.weights = std::move(assigned.weights);
+    }
+    CompressionStats strip_stats;
+    CompressedField built =
+        build_compressed_field(strip, prepared, strip_model, options.transform, cap,
+                               stats.residual_threshold, {}, strip_stats, clustering.threads);
+    for (std::size_t level = 0; level < part.sparse_counts.size(); ++level)
+      part.sparse_counts[level] += strip_stats.sparseness[level] * double(count);
+    if (by_peak)
+      for (const std::uint32_t p : built.stored_function)
+        part.peaks.push_back(strip.values.row(p).cwiseAbs().maxCoeff());
+    row += count;
+    append_compressed_rows(part.field, built);
+    for (int r = (y + sample_every - 1) / sample_every * sample_every; r < y + rows;
+         r += sample_every) {
+      append_field_rows(part.original_sample, strip, r - y, 1);
+      part.sample_rows.emplace_back(r, 1);
+    }
+    progress.advance(std::uint64_t(rows));
+  }
+  progress.finish();
+  if (row != stored_rows) throw_changed(row);
+  return part;
 }
 
 }  // namespace
@@ -288,6 +378,8 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
                                       const IterationHook& hook, const ClusteringResume* resume) {
   validate_compression_options(options);
   check_streamable_options(options);
+  const auto run_start = Clock::now();
+  Ranks& ranks = process_ranks();
   const ReflectanceField& header = reader.header();
   const int lights = header.lights();
   const ClusteringOptions& clustering = options.clustering;
@@ -297,36 +389,55 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : header.noise_floor;
   stats.residual_threshold =
       options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
+  // This rank's pixel rows.
+  const int begin_row = int(std::int64_t(header.height) * ranks.rank() / ranks.size());
+  const int end_row = int(std::int64_t(header.height) * (ranks.rank() + 1) / ranks.size());
 
-  // 1. Read: scratch rows, the sample, the dark model's sums.
+  // 1. Read: scratch rows, the sample, the dark model's sums; counts over all ranks.
   auto start = Clock::now();
   ScratchRows scratch(plan.scratch_folder, scratch_name, lights);
-  ReadResult read = read_strips(reader, options, plan, stats.noise_floor, scratch, stats);
+  ReadResult read =
+      read_strips(reader, options, plan, stats.noise_floor, begin_row, end_row, scratch);
+  std::vector<double> sums = read.dark_sum;
+  sums.insert(sums.end(), {double(read.stored_rows), double(read.dark_pixels),
+                           double(read.outside_mask), double(scratch.bytes())});
+  ranks.sum_everywhere(sums.data(), sums.size());
+  const std::size_t channel_lights = read.dark_sum.size();
+  stats.stored_rows = std::size_t(sums[channel_lights]);
+  stats.dark_pixels = std::size_t(sums[channel_lights + 1]);
+  stats.outside_mask = std::int64_t(sums[channel_lights + 2]);
+  trace.scratch_bytes = std::uint64_t(sums[channel_lights + 3]);
+  std::vector<float> dark;
+  if (stats.dark_pixels > 0)
+    for (std::size_t v = 0; v < channel_lights; ++v)
+      dark.push_back(float(sums[v] / double(stats.dark_pixels)));
   trace.strips = (header.height + plan.strip_rows - 1) / plan.strip_rows;
-  trace.sample_rows = read.sample.rows();
-  trace.scratch_bytes = scratch.bytes();
   stats.functions = std::int64_t(header.pixels()) * header.channels;
-  stats.stored_rows = read.functions.size();
-  stats.dark_pixels = read.dark_pixels.size();
   stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows) -
                    std::int64_t(stats.dark_pixels) * header.channels;
   stats.clusters_asked = clustering.clusters;
   trace.read_seconds = stats.prepare_seconds = seconds_since(start);
 
-  // 2. Fit on the sample.
+  // 2. Fit on the sample, gathered at the root; its bases go to every rank.
   start = Clock::now();
-  ClusterModel model = cluster_prepared_rows(read.sample, lights, options, stats, hook, resume);
+  ClusterModel bases;
+  {
+    const WorkingRows sample = gather_sample(ranks, read.sample);
+    read.sample = {};
+    trace.sample_rows = sample.rows();
+    if (ranks.root()) {
+      ClusterModel model = cluster_prepared_rows(sample, lights, options, stats, hook, resume);
+      bases.terms = model.terms;
+      bases.lights = model.lights;
+      bases.clusters = model.clusters;
+      bases.bases = std::move(model.bases);
+    }
+    broadcast_bases(ranks, bases);
+  }
   trace.sample_clustering_seconds = seconds_since(start);
-  read.sample = {};
 
   // 3. Refine over the scratch rows.
   const auto refine_start = Clock::now();
-  ClusterModel bases;
-  bases.terms = model.terms;
-  bases.lights = model.lights;
-  bases.clusters = model.clusters;
-  bases.bases = std::move(model.bases);
-  model = {};
   const std::size_t block_rows =
       std::max<std::size_t>(1, std::size_t(plan.strip_rows) * header.width * header.channels);
   std::vector<std::int32_t> assignment;
@@ -334,100 +445,65 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   // Like the in-memory iterations, the passes stop once few rows change cluster.
   for (int pass = 1; bases.clusters > 0 && pass <= options.refine_iterations; ++pass) {
     trace.passes.push_back(
-        refine_pass(scratch, block_rows, clustering, bases, assignment, weights, pass));
-    if (pass > 1 &&
-        double(trace.passes.back().changed) <= clustering.settle_fraction * double(scratch.rows()))
+        refine_pass(ranks, scratch, block_rows, clustering, bases, assignment, weights, pass));
+    if (pass > 1 && double(trace.passes.back().changed) <=
+                        clustering.settle_fraction * double(stats.stored_rows))
       break;
   }
   weights = {};
   trace.refine_seconds = seconds_since(refine_start);
   stats.clustering_seconds = seconds_since(start);
 
-  // 4. Build: the strips again, assigned to the final bases.
+  // 4. Build: the strips again, assigned to the final bases; the parts gathered at the root.
   start = Clock::now();
-  std::vector<float> dark(read.dark_sum.size());
-  for (std::size_t v = 0; v < dark.size(); ++v)
-    dark[v] =
-        read.dark_pixels.empty() ? 0.0f : float(read.dark_sum[v] / double(read.dark_pixels.size()));
   stats.residual_entries = options.residual.entries_for(lights);
-  const int cap = row_cap(options, lights);
-  const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
-  constexpr std::size_t levels = std::size(sparseness_thresholds);
-  std::vector<double> sparse(levels, 0.0), peak;
+  const auto build_start = Clock::now();
+  std::vector<BuiltPart> parts =
+      gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
+                                     scratch.rows(), begin_row, end_row));
+  // Every rank's time outside the exchanges, and bytes sent, at the root.
+  std::vector<double> rank_figures(2 * std::size_t(ranks.size()), 0.0);
+  rank_figures[2 * std::size_t(ranks.rank())] = seconds_since(run_start) - ranks.exchange_seconds();
+  rank_figures[2 * std::size_t(ranks.rank()) + 1] = double(ranks.bytes_sent());
+  ranks.sum_to_root(rank_figures.data(), rank_figures.size());
+  StreamedCompression result;
+  if (!ranks.root()) return result;
+  for (int r = 0; r < ranks.size(); ++r) {
+    trace.rank_compute_seconds.push_back(rank_figures[2 * std::size_t(r)]);
+    trace.rank_bytes_sent.push_back(std::uint64_t(rank_figures[2 * std::size_t(r) + 1]));
+  }
+
+  CompressedField& out = result.field;
   StreamedPass build;
   build.pass = int(trace.passes.size()) + 1;
-  StreamedCompression result;
-  CompressedField& out = result.field;
-  // The quantization's original rows: whole pixel rows, evenly spaced, about as many functions
-  // as it measures.
-  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
-  const int sample_every = int(std::max<std::int64_t>(
-      1, header.height /
-             std::max<std::int64_t>(1, std::int64_t(plan.quantization_rows) / row_functions)));
-  std::size_t row = 0;
-  const auto throw_changed = [&](std::size_t rows_now) {
-    throw Error("the field " + reader.path().string() +
-                " changed while it was compressed: its second reading has at least " +
-                std::to_string(rows_now) + " stored functions, the first " +
-                std::to_string(read.functions.size()));
-  };
-  ProgressReporter progress("compress: building strips", std::uint64_t(header.height),
-                            clustering.quiet);
-  reader.rewind();
-  for (int y = 0; y < header.height; y += plan.strip_rows) {
-    throw_if_interrupted();
-    const int rows = std::min(plan.strip_rows, header.height - y);
-    const ReflectanceField strip = reader.read(y, rows);
-    PreparedRows prepared = prepare_rows(strip, options.transform == BasisTransform::haar,
-                                         stats.noise_floor, clustering.threads);
-    prepared.dark = read.dark_pixels.empty() ? std::vector<float>{} : dark;
-    ClusterModel strip_model = bases;
-    if (prepared.rows.rows() > 0) {
-      const std::size_t count = prepared.rows.rows();
-      if (row + count > read.functions.size()) throw_changed(row + count);
-      const std::vector<std::int32_t> current =
-          assignment.empty()
-              ? std::vector<std::int32_t>{}
-              : std::vector<std::int32_t>(assignment.begin() + std::ptrdiff_t(row),
-                                          assignment.begin() + std::ptrdiff_t(row + count));
-      AssignmentResult assigned = assign_to_bases(prepared.rows, bases, clustering, current);
-      build.objective += assigned.total_objective();
-      for (std::size_t r = 0; r < assigned.best.size(); ++r)
-        build.changed += !assignment.empty() && assignment[row + r] != assigned.best[r];
-      strip_model.assignment = std::move(assigned.best);
-      strip_model.weights = std::move(assigned.weights);
+  std::vector<double> sparse(std::size(sparseness_thresholds), 0.0), peak;
+  for (BuiltPart& part : parts) {
+    append_compressed_rows(out, part.field);
+    part.field = {};
+    peak.insert(peak.end(), part.peaks.begin(), part.peaks.end());
+    for (std::size_t level = 0; level < sparse.size(); ++level)
+      sparse[level] += part.sparse_counts[level];
+    build.objective += part.objective;
+    build.changed += std::size_t(part.changed);
+    if (part.original_sample.height > 0) {
+      append_field_rows(result.original_sample, part.original_sample, 0,
+                        part.original_sample.height);
+      result.sample_rows.insert(result.sample_rows.end(), part.sample_rows.begin(),
+                                part.sample_rows.end());
     }
-    CompressionStats strip_stats;
-    const CompressedField part =
-        build_compressed_field(strip, prepared, strip_model, options.transform, cap,
-                               stats.residual_threshold, {}, strip_stats, clustering.threads);
-    for (std::size_t level = 0; level < levels; ++level)
-      sparse[level] += strip_stats.sparseness[level] * double(prepared.rows.rows());
-    if (by_peak)
-      for (const std::uint32_t p : part.stored_function)
-        peak.push_back(strip.values.row(p).cwiseAbs().maxCoeff());
-    row += prepared.rows.rows();
-    append_compressed_rows(out, part);
-    for (int r = (y + sample_every - 1) / sample_every * sample_every; r < y + rows;
-         r += sample_every) {
-      append_field_rows(result.original_sample, strip, r - y, 1);
-      result.sample_rows.emplace_back(r, 1);
-    }
-    progress.advance(std::uint64_t(rows));
   }
-  progress.finish();
-  build.seconds = seconds_since(start);
+  build.seconds = seconds_since(build_start);
   trace.passes.push_back(build);
-  if (row != read.functions.size()) throw_changed(row);
   out.clusters = bases.clusters;
   out.bases = bases.bases;
-  if (by_peak)
+  if (options.residual_allocation == ResidualAllocation::peak)
     keep_largest_relative_to_peak(out.residual, peak,
                                   std::size_t(stats.residual_entries) * out.stored_rows());
   stats.residual_nonzeros = out.residual.nonzeros();
-  stats.sparseness.assign(levels, 0.0);
-  for (std::size_t level = 0; level < levels; ++level)
-    stats.sparseness[level] = row == 0 ? 0.0 : sparse[level] / double(row);
+  stats.sparseness.assign(sparse.size(), 0.0);
+  for (std::size_t level = 0; level < sparse.size(); ++level)
+    stats.sparseness[level] =
+        out.stored_rows() == 0 ? 0.0 : sparse[level] / double(out.stored_rows());
   stats.clusters = bases.clusters;
   stats.residual_seconds = trace.build_seconds = seconds_since(start);
   return result;

@@ -43,12 +43,13 @@ struct CompressionPlan {
 };
 
 // The plan for a field of `header`'s shape (values empty; mask set) within `budget` bytes, with
-// `threads` workers: in memory when the estimate fits, else streamed with the tallest strips and
-// the largest sample that fit. Throws Error with the numbers when even a one-row strip and the
-// model do not fit.
+// `threads` workers: in memory when the estimate fits (and `stream_anyway` is false: several
+// ranks always stream), else streamed with the tallest strips and the largest sample that fit.
+// Throws Error with the numbers when even a one-row strip and the model do not fit.
 CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
                                  std::uint64_t budget, const std::string& budget_source,
-                                 unsigned threads, const std::filesystem::path& scratch_folder);
+                                 unsigned threads, const std::filesystem::path& scratch_folder,
+                                 bool stream_anyway = false);
 
 // Throws Error naming the first option that needs the whole field in memory (clustered PCA,
 // multi-resolution, light weighting, the trimmed refit, an exact refit).
@@ -63,10 +64,13 @@ struct StreamedPass {
 
 struct StreamedTrace {
   std::size_t sample_rows = 0;
-  std::uint64_t scratch_bytes = 0;
+  std::uint64_t scratch_bytes = 0;  // over all ranks
   int strips = 0;
   double read_seconds = 0, sample_clustering_seconds = 0, refine_seconds = 0, build_seconds = 0;
   std::vector<StreamedPass> passes;
+  // Per rank (core/ranks.hpp): seconds outside the exchanges between ranks, and bytes sent.
+  std::vector<double> rank_compute_seconds;
+  std::vector<std::uint64_t> rank_bytes_sent;
 };
 
 struct StreamedCompression {
@@ -80,6 +84,9 @@ struct StreamedCompression {
 // Compresses the field `reader` reads with `plan` (streamed); the scratch file is
 // `.tmp-<pid>-<scratch_name>` in the plan's folder. `hook` and `resume` apply to the sample's
 // clustering (checkpoints of the sample's model). `stats` is filled as compress_field fills it.
+// With several ranks (core/ranks.hpp: mpirun), each reads and refines its own band of pixel rows;
+// the root clusters the gathered sample, solves every F-step from the summed normal equations and
+// receives the parts: only the root's result holds the field (the others' is empty).
 StreamedCompression compress_streamed(FieldStripReader& reader, const CompressionOptions& options,
                                       const CompressionPlan& plan, CompressionStats& stats,
                                       StreamedTrace& trace, const std::string& scratch_name,

@@ -32,6 +32,11 @@ IndexWidth resolve_light_index_width(IndexWidth requested, int lights);
 CompressedField decode_container(const std::string& bytes, const std::filesystem::path& path,
                                  ContainerOptions* stored_options = nullptr);
 
+// The bytes write_container writes for `field`, in memory; errors begin with `where`, and
+// `layout`, when given, receives the layout.
+std::string encode_container(const CompressedField& field, const ContainerOptions& options,
+                             const std::string& where, ContainerLayout* layout);
+
 // The layout write_container would produce (section sizes as really stored), without writing: it
 // encodes the field in memory and keeps only the layout.
 ContainerLayout plan_container(const CompressedField& field, const ContainerOptions& options = {});

@@ -196,12 +196,12 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
           {"residual_values", std::move(residual_values), value_bytes(residual_precision)}};
 }
 
+}  // namespace
+
 std::string encode_container(const CompressedField& field, const ContainerOptions& options,
                              const std::string& where, ContainerLayout* layout) {
   return assemble_container(encode_sections(field, options, where), options.entropy_coding, layout);
 }
-
-}  // namespace
 
 void write_container(const fs::path& path, const CompressedField& field,
                      const ContainerOptions& options) {

@@ -97,10 +97,12 @@ TEST_F(EarlyFailure, FactorRefusesMoreTermsThanTheMatrixHas) {
 }
 
 TEST_F(EarlyFailure, WorkAboveTheMemoryLimitIsRefusedWithTheNumbers) {
-  auto run = run_relume("--memory-limit 1M synth -o " + at("s") + " --size 512x512 --lights 8");
+  // synth writes a row at a time: two rows (48 KB each) and the mask (256 KB) must fit.
+  auto run = run_relume("--memory-limit 100K synth -o " + at("s") + " --size 512x512 --lights 8");
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_THAT(run.output, HasSubstr("a synthetic field of 512x512 pixels and 8 lights needs about "
-                                    "24.0 MB, more than the 1.0 MB available (--memory-limit)"));
+  EXPECT_THAT(run.output, HasSubstr("a synthetic field of 512x512 pixels and 8 lights, written a "
+                                    "row at a time, needs about 352.0 KB, more than the 100.0 KB "
+                                    "available (--memory-limit)"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "s"));
   run = run_relume("--memory-limit lots synth -o " + at("s"));
   EXPECT_EQ(run.exit_code, 2);

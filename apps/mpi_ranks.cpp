@@ -1,0 +1,147 @@
+// The MPI ranks of `mpirun -n N relume ...` (see mpi_ranks.hpp). Messages go in chunks of at most
+// 256 MB (MPI counts are ints); every exchange is timed and its bytes counted for the report.
+#include "mpi_ranks.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <relume/error.hpp>
+
+#include "core/elapsed_time.hpp"
+#include "core/ranks.hpp"
+
+namespace relume {
+namespace {
+
+constexpr std::size_t chunk_bytes = std::size_t(1) << 28;
+
+class MpiRanks final : public Ranks {
+ public:
+  MpiRanks() {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  void sum_to_root(double* values, std::size_t count) override {
+    const Timer timer(this);
+    for (std::size_t done = 0; done < count;) {
+      const int n = int(std::min(count - done, chunk_bytes / sizeof(double)));
+      MPI_Reduce(rank_ == 0 ? MPI_IN_PLACE : values + done, values + done, n, MPI_DOUBLE, MPI_SUM,
+                 0, MPI_COMM_WORLD);
+      if (rank_ != 0) sent_ += std::uint64_t(n) * sizeof(double);
+      done += std::size_t(n);
+    }
+  }
+
+  void sum_everywhere(double* values, std::size_t count) override {
+    const Timer timer(this);
+    for (std::size_t done = 0; done < count;) {
+      const int n = int(std::min(count - done, chunk_bytes / sizeof(double)));
+      MPI_Allreduce(MPI_IN_PLACE, values + done, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+      sent_ += std::uint64_t(n) * sizeof(double);
+      done += std::size_t(n);
+    }
+  }
+
+  void broadcast(std::string& bytes) override {
+    const Timer timer(this);
+    std::uint64_t size = bytes.size();
+    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    bytes.resize(size);
+    for (std::size_t done = 0; done < size;) {
+      const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
+      MPI_Bcast(bytes.data() + done, n, MPI_CHAR, 0, MPI_COMM_WORLD);
+      done += std::size_t(n);
+    }
+    if (rank_ == 0) sent_ += size * std::uint64_t(size_ - 1);
+  }
+
+  std::vector<std::string> gather_to_root(const std::string& bytes) override {
+    const Timer timer(this);
+    std::vector<std::string> parts;
+    if (rank_ != 0) {
+      std::uint64_t size = bytes.size();
+      MPI_Send(&size, 1, MPI_UINT64_T, 0, 0, MPI_COMM_WORLD);
+      for (std::size_t done = 0; done < size;) {
+        const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
+        MPI_Send(bytes.data() + done, n, MPI_CHAR, 0, 0, MPI_COMM_WORLD);
+        done += std::size_t(n);
+      }
+      sent_ += size;
+      return parts;
+    }
+    parts.push_back(bytes);
+    for (int from = 1; from < size_; ++from) {
+      std::uint64_t size = 0;
+      MPI_Recv(&size, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      std::string part(size, '\0');
+      for (std::size_t done = 0; done < size;) {
+        const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
+        MPI_Recv(part.data() + done, n, MPI_CHAR, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        done += std::size_t(n);
+      }
+      parts.push_back(std::move(part));
+    }
+    return parts;
+  }
+
+  std::uint64_t bytes_sent() const override { return sent_; }
+  double exchange_seconds() const override { return exchange_seconds_; }
+
+ private:
+  // Adds the time of one exchange to exchange_seconds_.
+  struct Timer {
+    explicit Timer(MpiRanks* ranks) : ranks_(ranks), start_(Clock::now()) {}
+    ~Timer() { ranks_->exchange_seconds_ += seconds_since(start_); }
+    MpiRanks* ranks_;
+    Clock::time_point start_;
+  };
+
+  int rank_ = 0, size_ = 1;
+  std::uint64_t sent_ = 0;
+  double exchange_seconds_ = 0;
+};
+
+MpiRanks* installed = nullptr;
+
+// Started by mpirun: OpenMPI's launcher, or a PMI one (Slurm, Hydra).
+bool started_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+}  // namespace
+
+MpiRun::MpiRun(int* argc, char*** argv) {
+  if (!started_by_mpirun()) return;
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  // Errors end the job with a message rather than returning codes nobody checks.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
+  joined_ = true;
+  installed = new MpiRanks;
+  set_process_ranks(installed);
+}
+
+MpiRun::~MpiRun() {
+  if (!joined_) return;
+  set_process_ranks(nullptr);
+  delete installed;
+  installed = nullptr;
+  MPI_Finalize();
+}
+
+bool MpiRun::several() const { return size() > 1; }
+int MpiRun::rank() const { return process_ranks().rank(); }
+int MpiRun::size() const { return process_ranks().size(); }
+
+void MpiRun::abort_all(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);  // MPI_Abort does not return; this keeps [[noreturn]] honest
+}
+
+}  // namespace relume

@@ -1,0 +1,43 @@
+// What the ranks of a distributed streamed compression (core/ranks.hpp) exchange, packed into
+// bytes: every rank's share of the clustering sample (gathered at the root, which clusters it),
+// the bases (broadcast by the root after every solve), the F-step's sums (added up at the root),
+// and every rank's part of the compressed field (gathered at the root, which writes the file).
+// With one process each is a plain copy.
+#pragma once
+
+#include <relume/compressed_field.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compress/cluster_basis.hpp"
+#include "compress/cluster_model.hpp"
+#include "core/ranks.hpp"
+
+namespace relume {
+
+// Every rank's sample rows, stacked in rank order, at the root (empty elsewhere).
+WorkingRows gather_sample(Ranks& ranks, const WorkingRows& local);
+
+// The root's clusters, terms, lights and bases into every rank's `model` (its assignment and
+// weights are left alone).
+void broadcast_bases(Ranks& ranks, ClusterModel& model);
+
+// Adds every rank's round sums of every cluster into the root's `fits`.
+void sum_fits_to_root(Ranks& ranks, std::vector<BasisIrlsFit>& fits);
+
+// One rank's part of the build pass: its rows of the compressed field (float32) and what the
+// root needs with them.
+struct BuiltPart {
+  CompressedField field;
+  std::vector<double> peaks;          // per stored row, for the peak residual allocation
+  std::vector<double> sparse_counts;  // per sparseness threshold, rows x share summed
+  double objective = 0, changed = 0;  // the build assignment's L1 residual, cluster changes
+  ReflectanceField original_sample;   // the quantization's original pixel rows
+  std::vector<std::pair<int, int>> sample_rows;
+};
+
+// Every rank's part at the root, in rank order (the root's own first); empty elsewhere.
+std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local);
+
+}  // namespace relume

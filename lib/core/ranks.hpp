@@ -1,0 +1,41 @@
+// The processes that share one run. A plain run is one process; `mpirun -n N relume compress ...`
+// (the command built with MPI, apps/mpi_ranks.*) makes it N ranks, over which a streamed
+// compression splits its pixel rows (compress/streamed_compression.hpp). The library only knows
+// this interface: one process by default, so it needs no MPI itself.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace relume {
+
+class Ranks {
+ public:
+  virtual ~Ranks() = default;
+
+  virtual int rank() const { return 0; }
+  virtual int size() const { return 1; }
+  bool root() const { return rank() == 0; }
+
+  // Element-wise sums over the ranks: into the root's `values` (the others' are left as they
+  // were), or into every rank's.
+  virtual void sum_to_root(double* /*values*/, std::size_t /*count*/) {}
+  virtual void sum_everywhere(double* /*values*/, std::size_t /*count*/) {}
+  // The root's bytes to every rank (resized on the others).
+  virtual void broadcast(std::string& /*bytes*/) {}
+  // Every rank's bytes, in rank order, at the root; empty elsewhere.
+  virtual std::vector<std::string> gather_to_root(const std::string& bytes) { return {bytes}; }
+  // Bytes this rank has sent to the others so far, and the seconds it spent in the exchanges
+  // (sending, receiving and waiting for the others).
+  virtual std::uint64_t bytes_sent() const { return 0; }
+  virtual double exchange_seconds() const { return 0; }
+};
+
+// The ranks of this process's run: one process unless set_process_ranks installed others (the
+// command does, under mpirun).
+Ranks& process_ranks();
+void set_process_ranks(Ranks* ranks);
+
+}  // namespace relume

@@ -1,0 +1,105 @@
+// Tests of `mpirun -n N relume compress` (the command built with MPI, apps/mpi_ranks.*): 1, 2 and
+// 3 ranks on loopback compress one field (streamed) within 1% of one process's error, a rank
+// count gives the same bytes every time, the report says how the ranks shared the work, and a
+// failure on one rank (a truncated image under its rows only) ends every rank with that rank's
+// message and leaves no output.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+namespace fs = std::filesystem;
+
+// The MPI launcher CMake found (FindMPI's MPIEXEC_EXECUTABLE); empty when built without MPI.
+#ifdef RELUME_MPIRUN
+constexpr const char* mpirun = RELUME_MPIRUN;
+#else
+constexpr const char* mpirun = "";
+#endif
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+class MpiCompress : public ::testing::Test {
+ protected:
+  void SetUp() override {
+#ifndef RELUME_MPIRUN
+    GTEST_SKIP() << "relume was built without MPI (RELUME_MPI off: libopenmpi-dev missing)";
+#else
+    const auto synth = testing::run_relume("-q synth -o '" + (dir_ / "scene").string() +
+                                           "' --size 64x64 --lights 32 --samples 1");
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+#endif
+  }
+
+  // `[mpirun -n ranks] relume compress scene -o dir/name.relume --report dir/name.json`; ranks 0:
+  // without mpirun. The memory limit makes one process stream too (the field is 1.5 MB as
+  // float32, 3.8 MB to compress in memory), so that all compare the same method.
+  testing::CommandResult compress(int ranks, const std::string& name) {
+    const std::string relume = ranks == 0 ? std::string(RELUME_BINARY)
+                                          : std::string(mpirun) +
+                                                " --allow-run-as-root --oversubscribe -n " +
+                                                std::to_string(ranks) + " " + RELUME_BINARY;
+    return testing::run_command(
+        relume + " -q --memory-limit 3M compress '" + (dir_ / "scene").string() + "' -o '" +
+        (dir_ / (name + ".relume")).string() + "' --report '" + (dir_ / (name + ".json")).string() +
+        "' --clusters 16 --threads 1 2>&1");
+  }
+
+  testing::TempDir dir_;
+};
+
+TEST_F(MpiCompress, RanksShareTheWorkAndReachTheSingleProcessQuality) {
+  const auto single = compress(0, "single");
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  const double single_error = read_json(dir_ / "single.json")["error_masked"].get<double>();
+  for (const int ranks : {1, 2, 3}) {
+    const std::string name = "ranks" + std::to_string(ranks);
+    const auto run = compress(ranks, name);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const nlohmann::json report = read_json(dir_ / (name + ".json"));
+    EXPECT_EQ(report["plan"]["ranks"].get<int>(), ranks);
+    if (ranks > 1) {
+      EXPECT_TRUE(report["plan"]["streamed"].get<bool>()) << "several ranks always stream";
+      EXPECT_EQ(report["streamed"]["rank_bytes_sent"].size(), std::size_t(ranks));
+      EXPECT_EQ(report["streamed"]["rank_compute_seconds"].size(), std::size_t(ranks));
+      EXPECT_GT(report["streamed"]["rank_bytes_sent"][1].get<double>(), 0);
+    }
+    const double error = report["error_masked"].get<double>();
+    std::printf("%d ranks: error_masked %.6f (one process, no mpirun: %.6f)\n", ranks, error,
+                single_error);
+    EXPECT_NEAR(error, single_error, 0.01 * single_error);
+    for (const auto& entry : fs::directory_iterator(dir_.path()))
+      EXPECT_FALSE(entry.path().filename().string().starts_with(".tmp-"))
+          << "a scratch file is left: " << entry.path();
+  }
+  const auto again = compress(2, "again");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_TRUE(read_file(dir_ / "again.relume") == read_file(dir_ / "ranks2.relume"))
+      << "two ranks give the same container every time";
+}
+
+TEST_F(MpiCompress, AFailureOnOneRankEndsEveryRankWithItsMessage) {
+  // The last light's image loses its bottom rows, which the first of three ranks never reads.
+  const fs::path image = dir_ / "scene" / "032.exr";
+  fs::resize_file(image, fs::file_size(image) * 6 / 10);
+  const auto run = compress(3, "failed");
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  // The rank whose rows reach the lost part says so (which one depends on the image's bytes).
+  EXPECT_TRUE(run.output.find("relume (rank 1 of 3): error:") != std::string::npos ||
+              run.output.find("relume (rank 2 of 3): error:") != std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("032.exr"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir_ / "failed.relume"));
+  EXPECT_FALSE(fs::exists(dir_ / "failed.json"));
+}
+
+}  // namespace
+}  // namespace relume
