@@ -8,7 +8,10 @@
 #    --memory-limit 3G, and the 640x640 one also streamed under 400M: seconds, peak memory,
 #    scratch bytes, Eq. 16 error and seconds per stored function, in memory and streamed.
 #  24mp: a 6000x4000, 60-light hemisphere field (17 GB as float32) within 4 GB.
-#   scripts/bench_scale.sh [BUILD_DIR] [OUT_DIR] [lights|fields|24mp ...]   (default: lights)
+#  mpi: the 640x640x253 field streamed (--memory-limit 400M) by 1, 2, 4 and 8 ranks of one
+#    thread (mpirun --oversubscribe: 4 and 8 share this machine's cores), each rank's time outside
+#    the exchanges and bytes sent per pass, and a model of the efficiency at 8 and 64 ranks.
+#   scripts/bench_scale.sh [BUILD_DIR] [OUT_DIR] [lights|fields|24mp|mpi ...]   (default: lights)
 # Writes OUT_DIR/scale_<part>.csv; the synthetic fields are kept in OUT_DIR for reruns (the big
 # ones take tens of GB of disk).
 set -euo pipefail
@@ -74,9 +77,10 @@ print(f"64 -> 1024 lights (16x the data): {float(b['seconds']) / float(a['second
 PY
 ;;
 fields)
-  csv="$out/scale_fields.csv"
+  sides="${FIELD_SIDES:-640 1280 2560}"
+  csv="$out/scale_fields_${sides// /_}.csv"
   echo "$streamed_header" >"$csv"
-  for side in ${FIELD_SIDES:-640 1280 2560}; do
+  for side in $sides; do
     field="$out/synth_${side}_253"
     [ -d "$field" ] || "$relume" -q synth -o "$field" --size "${side}x${side}" --lights 253 \
       --samples 1
@@ -96,6 +100,46 @@ fields)
   rm -rf "$field"
   cat "$csv"
 ;;
-*) echo "unknown part '$part' (lights, fields, 24mp)" >&2; exit 2 ;;
+mpi)
+  field="$out/synth_640_253"
+  [ -d "$field" ] || "$relume" -q synth -o "$field" --size 640x640 --lights 253 --samples 1
+  csv="$out/scale_mpi.csv"
+  echo "ranks,seconds,passes,rank_compute_seconds,rank_bytes_sent,error_masked" >"$csv"
+  for ranks in 1 2 4 8; do
+    report="$out/report_mpi_$ranks.json"
+    mpirun --allow-run-as-root --oversubscribe -n "$ranks" "$relume" -q --memory-limit 400M \
+      compress "$field" -o "$out/mpi_$ranks.relume" -y --clusters 64 --terms 4 --residual 12 \
+      --threads 1 --scratch "$out/scratch" --report "$report"
+    /usr/bin/python3 - "$report" "$ranks" >>"$csv" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+s = r["streamed"]
+print(",".join([sys.argv[2], f"{r['seconds']:.4g}", str(len(s["passes"])),
+                ";".join(f"{v:.3g}" for v in s["rank_compute_seconds"]),
+                ";".join(str(v) for v in s["rank_bytes_sent"]), f"{r['error_masked']:.6g}"]))
+PY
+  done
+  cat "$csv"
+  # The model: per pass, compute divides over the ranks (one rank's measured compute / P) and
+  # each pass's exchanges (what a non-root rank sends per pass, measured at 8 ranks) cross a tree
+  # of log2(P) steps at an assumed 1.25 GB/s (10 Gb Ethernet) with 50 us per message, 2 messages
+  # per F-step round (reduce, broadcast) and 7 rounds per pass.
+  /usr/bin/python3 - "$csv" <<'PY'
+import csv, math, sys
+rows = {int(r["ranks"]): r for r in csv.DictReader(open(sys.argv[1]))}
+one, two, eight = rows[1], rows[2], rows[8]
+compute_1 = float(one["rank_compute_seconds"]) / int(one["passes"])
+print(f"strong scaling on this machine: 1 rank {float(one['seconds']):.1f} s, 2 ranks "
+      f"{float(two['seconds']):.1f} s: {float(one['seconds']) / float(two['seconds']):.2f}x")
+sent_8 = max(int(v) for v in eight["rank_bytes_sent"].split(";")[1:]) / int(eight["passes"])
+for p in (8, 64):
+    messages = 7 * 2 * math.log2(p)
+    comm = messages * 50e-6 + sent_8 * math.log2(p) / 1.25e9
+    compute = compute_1 / p
+    print(f"model at {p} ranks: compute {compute:.3f} s per pass, exchanges {comm:.4f} s per pass"
+          f" (a rank sends {sent_8 / 1e6:.2f} MB per pass): efficiency {compute / (compute + comm):.0%}")
+PY
+;;
+*) echo "unknown part '$part' (lights, fields, 24mp, mpi)" >&2; exit 2 ;;
 esac
 done

@@ -106,6 +106,10 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
     put_array(out, local.sparse_counts.data(), local.sparse_counts.size());
     put_array(out, &local.objective, 1);
     put_array(out, &local.changed, 1);
+    const double error[3] = {local.float32_masked.mean,
+                             double(local.float32_masked.functions_averaged),
+                             double(local.float32_masked.zero_energy_skipped)};
+    put_array(out, error, 3);
     const ReflectanceField& sample = local.original_sample;
     out.u32(std::uint32_t(sample.width));
     out.u32(std::uint32_t(sample.height));
@@ -130,6 +134,9 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
     part.sparse_counts = take_array<double>(in);
     part.objective = take_array<double>(in).at(0);
     part.changed = take_array<double>(in).at(0);
+    const std::vector<double> error = take_array<double>(in);
+    if (error.size() != 3) in.fail("a malformed error");
+    part.float32_masked = {error[0], std::int64_t(error[1]), std::int64_t(error[2])};
     ReflectanceField& sample = part.original_sample;
     sample.width = int(in.u32());
     sample.height = int(in.u32());

@@ -33,6 +33,7 @@ struct BuiltPart {
   std::vector<double> peaks;          // per stored row, for the peak residual allocation
   std::vector<double> sparse_counts;  // per sparseness threshold, rows x share summed
   double objective = 0, changed = 0;  // the build assignment's L1 residual, cluster changes
+  RelativeError float32_masked;       // Eq. 16 of `field` over its masked functions
   ReflectanceField original_sample;   // the quantization's original pixel rows
   std::vector<std::pair<int, int>> sample_rows;
 };

@@ -4,17 +4,20 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <Eigen/Core>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <relume/error.hpp>
 
+#include "container/container_bytes.hpp"
+#include "core/parallel.hpp"
+
 namespace relume {
 namespace fs = std::filesystem;
 
-ScratchRows::ScratchRows(const fs::path& folder, const std::string& name, int lights)
-    : lights_(lights) {
+ScratchRows::ScratchRows(const fs::path& folder, const std::string& name, int lights,
+                         unsigned threads)
+    : lights_(lights), threads_(threads) {
   std::error_code error;
   fs::create_directories(folder, error);
   if (error)
@@ -36,12 +39,15 @@ ScratchRows::~ScratchRows() {
 
 void ScratchRows::append(const WorkingRows& rows) {
   const std::size_t values = rows.rows() * std::size_t(lights_);
-  std::vector<Eigen::half> halves(values);
+  std::vector<std::uint16_t> halves(values);
   const float* data = rows.values.data();
-  for (std::size_t v = 0; v < values; ++v) halves[v] = Eigen::half(data[v]);
+  parallel_for(rows.rows(), threads_, [&](std::size_t r, unsigned) {
+    for (std::size_t v = r * std::size_t(lights_); v < (r + 1) * std::size_t(lights_); ++v)
+      halves[v] = float_to_half_bits(data[v]);
+  });
   off_t offset = off_t(bytes());
   const char* data_bytes = reinterpret_cast<const char*>(halves.data());
-  std::size_t left = values * sizeof(Eigen::half);
+  std::size_t left = values * sizeof(std::uint16_t);
   while (left > 0) {
     const ssize_t written = ::pwrite(fd_, data_bytes, left, offset);
     if (written < 0 && errno == EINTR) continue;
@@ -59,10 +65,10 @@ WorkingRows ScratchRows::read(std::size_t first, std::size_t count) const {
   if (first + count > rows())
     throw Error("scratch file " + path_.string() + ": rows " + std::to_string(first) + " to " +
                 std::to_string(first + count) + " are beyond its " + std::to_string(rows()));
-  std::vector<Eigen::half> halves(count * std::size_t(lights_));
+  std::vector<std::uint16_t> halves(count * std::size_t(lights_));
   char* data_bytes = reinterpret_cast<char*>(halves.data());
-  std::size_t left = halves.size() * sizeof(Eigen::half);
-  off_t offset = off_t(first * std::size_t(lights_) * sizeof(Eigen::half));
+  std::size_t left = halves.size() * sizeof(std::uint16_t);
+  off_t offset = off_t(first * std::size_t(lights_) * sizeof(std::uint16_t));
   while (left > 0) {
     const ssize_t got = ::pread(fd_, data_bytes, left, offset);
     if (got < 0 && errno == EINTR) continue;
@@ -77,16 +83,16 @@ WorkingRows ScratchRows::read(std::size_t first, std::size_t count) const {
   rows.values.resize(Eigen::Index(count), lights_);
   rows.norms.assign(norms_.begin() + std::ptrdiff_t(first),
                     norms_.begin() + std::ptrdiff_t(first + count));
-  for (std::size_t r = 0; r < count; ++r) {
+  parallel_for(count, threads_, [&](std::size_t r, unsigned) {
     float* out = rows.values.data() + r * std::size_t(lights_);
     double energy = 0;
     for (int i = 0; i < lights_; ++i) {
-      out[i] = float(halves[r * std::size_t(lights_) + std::size_t(i)]);
+      out[i] = half_bits_to_float(halves[r * std::size_t(lights_) + std::size_t(i)]);
       energy += double(out[i]) * out[i];
     }
     const float scale = energy > 0 ? float(1.0 / std::sqrt(energy)) : 1.0f;
     for (int i = 0; i < lights_; ++i) out[i] *= scale;
-  }
+  });
   return rows;
 }
 

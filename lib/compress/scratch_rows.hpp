@@ -19,9 +19,10 @@ namespace relume {
 
 class ScratchRows {
  public:
-  // Creates the file `.tmp-<pid>-<name>` in `folder` (created if missing). Throws Error naming
-  // it when it cannot be written.
-  ScratchRows(const std::filesystem::path& folder, const std::string& name, int lights);
+  // Creates the file `.tmp-<pid>-<name>` in `folder` (created if missing); values are converted
+  // by `threads` workers (0: all cores). Throws Error naming it when it cannot be written.
+  ScratchRows(const std::filesystem::path& folder, const std::string& name, int lights,
+              unsigned threads = 0);
   ~ScratchRows();
   ScratchRows(const ScratchRows&) = delete;
   ScratchRows& operator=(const ScratchRows&) = delete;
@@ -39,6 +40,7 @@ class ScratchRows {
  private:
   std::filesystem::path path_;
   int lights_ = 0;
+  unsigned threads_ = 0;
   int fd_ = -1;
   std::vector<float> norms_;
   std::unique_ptr<TemporaryPathRegistration> registration_;

@@ -40,7 +40,7 @@ std::optional<QuantizationChoice> store_with_precision(const ReflectanceField& o
   std::optional<QuantizationChoice> choice;
   if (precision.quantizes())
     choice = quantize_with_budget(original, field, precision.quantization_budget());
-  field = quantize_for_container(field, precision.container_options());
+  field = quantize_for_container(std::move(field), precision.container_options());
   return choice;
 }
 
@@ -60,9 +60,9 @@ std::optional<QuantizationChoice> store_with_precision_on_strips(
       append_compressed_rows(sampled, compressed_rows(field, first_row, rows));
     choice = choose_quantization(sample, sampled, budget);
     choice->steps = steps_that_fit(field, choice->steps);
-    field = quantize_values(field, choice->steps);
+    field = quantize_values(std::move(field), choice->steps);
   }
-  field = quantize_for_container(field, precision.container_options());
+  field = quantize_for_container(std::move(field), precision.container_options());
   return choice;
 }
 

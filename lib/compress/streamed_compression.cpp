@@ -1,4 +1,4 @@
-// Implementation of streamed compression and its memory plan (see streamed_compression.hpp).
+// Implementation of streamed compression (see streamed_compression.hpp).
 // Interruptible: every strip and block checks for a Ctrl-C (lib/core/interruption.hpp).
 #include "compress/streamed_compression.hpp"
 
@@ -22,134 +22,6 @@
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
-namespace {
-
-// Bytes of the clustering sample per row per light: the rows, the seeding's sample copy and the
-// clustering's working copies.
-constexpr std::uint64_t sample_bytes_per_value = 12;
-
-// Rows a whole-field quantization choice measures (QuantizationBudget::sample_rows).
-constexpr std::uint64_t quantization_sample_rows = QuantizationBudget{}.sample_rows;
-
-std::uint64_t inside_functions(const ReflectanceField& header) {
-  std::uint64_t inside = 0;
-  for (const std::uint8_t value : header.mask) inside += value != 0;
-  if (header.mask.empty()) inside = std::uint64_t(header.pixels());
-  return inside * std::uint64_t(header.channels);
-}
-
-// The residual entries a stored row may hold.
-int row_cap(const CompressionOptions& options, int lights) {
-  const int entries = options.residual.entries_for(lights);
-  return options.residual_allocation == ResidualAllocation::peak
-             ? std::min(lights, entries * peak_allocation_row_cap)
-             : entries;
-}
-
-}  // namespace
-
-std::string CompressionPlan::describe() const {
-  char line[1024];
-  if (!streamed) {
-    std::snprintf(line, sizeof line,
-                  "plan: in memory (the field is %s as float32, compressing it needs about %s; "
-                  "the budget is %s, %s)",
-                  byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
-                  byte_size_text(budget).c_str(), budget_source.c_str());
-  } else {
-    std::snprintf(line, sizeof line,
-                  "plan: streamed (the field is %s as float32, in memory it would need about %s; "
-                  "the budget is %s, %s): strips of %d pixel rows, a clustering sample of up to "
-                  "%zu functions, scratch of up to %s in %s, model and pass state about %s, "
-                  "quantization measured on %zu original functions",
-                  byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
-                  byte_size_text(budget).c_str(), budget_source.c_str(), strip_rows, sample_rows,
-                  byte_size_text(scratch_bytes).c_str(), scratch_folder.string().c_str(),
-                  byte_size_text(model_bytes).c_str(), quantization_rows);
-  }
-  return line;
-}
-
-CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
-                                 std::uint64_t budget, const std::string& budget_source,
-                                 unsigned threads, const std::filesystem::path& scratch_folder,
-                                 bool stream_anyway) {
-  const std::uint64_t lights = std::uint64_t(header.lights());
-  const std::uint64_t terms = std::uint64_t(options.clustering.terms);
-  const std::uint64_t clusters = std::uint64_t(options.clustering.clusters);
-  const std::uint64_t functions = inside_functions(header);
-  const std::uint64_t row_functions = std::uint64_t(header.width) * header.channels;
-  CompressionPlan plan;
-  plan.budget = budget;
-  plan.budget_source = budget_source;
-  plan.field_bytes = std::uint64_t(header.pixels()) * header.channels * lights * sizeof(float);
-  // The compressed field (W, the residual's indices and values, row and cluster indices) as
-  // built, as stored and as quantized.
-  const std::uint64_t compressed =
-      functions * (terms * 4 + std::uint64_t(row_cap(options, int(lights))) * 8 + 8) * 3;
-  plan.in_memory_bytes = 2 * plan.field_bytes + compressed;
-  if (plan.in_memory_bytes <= budget && !stream_anyway) return plan;
-
-  plan.streamed = true;
-  plan.scratch_folder = scratch_folder;
-  plan.scratch_bytes = functions * lights * 2;
-  // Besides the compressed field: every row's norm, function, cluster (and peak) and weights in
-  // the passes, and the clusters' normal equations, best and current bases.
-  plan.model_bytes = compressed + functions * (20 + terms * 4) +
-                     clusters * lights * (terms * (terms + 1) / 2 + 3 * terms + 2) * 8;
-  // Per pixel row of a strip: the strip's field, its prepared rows, the built rows and the
-  // error measure's reconstruction, and every reading thread's decoded image rows.
-  const std::uint64_t strip_row_bytes =
-      row_functions * lights * 4 * 4 +
-      std::uint64_t(resolve_thread_count(threads)) * header.width * 4 * sizeof(float);
-  const std::uint64_t sample_row_bytes = lights * sample_bytes_per_value;
-  const std::uint64_t original_row_bytes = lights * sizeof(float);
-  const std::uint64_t fewest_sample = std::min<std::uint64_t>(functions, 16 * clusters);
-  const std::uint64_t least = plan.model_bytes + strip_row_bytes +
-                              fewest_sample * sample_row_bytes + row_functions * original_row_bytes;
-  if (budget < least)
-    throw Error("the memory budget of " + byte_size_text(budget) + " (" + budget_source +
-                ") cannot hold even a one-row strip of this " + std::to_string(header.width) + "x" +
-                std::to_string(header.height) + "x" + std::to_string(lights) +
-                " field with its model: that needs about " + byte_size_text(least) + " (model " +
-                byte_size_text(plan.model_bytes) + ", strip row " +
-                byte_size_text(strip_row_bytes) + ", clustering sample " +
-                byte_size_text(fewest_sample * sample_row_bytes) +
-                "); raise --memory-limit or compress fewer clusters or terms");
-  std::uint64_t left = budget - plan.model_bytes;
-  // An eighth of what is left to the quantization's original rows, two thirds of the rest to the
-  // clustering sample (the more rows the clusters are found on, the closer the result is to the
-  // in-memory one), the rest to the strips (their height only sets how many reads there are).
-  plan.quantization_rows = std::size_t(std::clamp<std::uint64_t>(
-      left / 8 / original_row_bytes, row_functions,
-      std::min<std::uint64_t>(functions, quantization_sample_rows) + row_functions));
-  left -= plan.quantization_rows * original_row_bytes;
-  plan.sample_rows = std::size_t(
-      std::max(fewest_sample, std::min<std::uint64_t>(functions, left / 3 * 2 / sample_row_bytes)));
-  const std::uint64_t for_strips = left - std::min(left, plan.sample_rows * sample_row_bytes);
-  plan.strip_rows =
-      int(std::clamp<std::uint64_t>(for_strips / strip_row_bytes, 1, std::uint64_t(header.height)));
-  return plan;
-}
-
-void check_streamable_options(const CompressionOptions& options) {
-  const char* option = nullptr;
-  if (options.method == CompressionMethod::cpca)
-    option = "--method cpca";
-  else if (options.multires_levels > 0)
-    option = "--multires";
-  else if (options.light_weighting > 0)
-    option = "--light-weighting";
-  else if (options.trimmed_refit_rounds >= 0)
-    option = "--trimmed-refit";
-  else if (options.clustering.exact_refit)
-    option = "--solver (an exact refit)";
-  if (option)
-    throw Error(std::string(option) +
-                " needs the whole field in memory, which does not fit the memory budget here "
-                "(the plan is streamed): leave it out, or raise --memory-limit");
-}
-
 namespace {
 
 // Every row of `rows` assigned to its best cluster of `bases` (a model without assignment),
@@ -184,7 +56,7 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
   const ReflectanceField& header = reader.header();
   const int lights = header.lights();
   const bool haar = options.transform == BasisTransform::haar;
-  const std::uint64_t functions = inside_functions(header);
+  const std::uint64_t functions = functions_inside_mask(header);
   const std::size_t stride = std::size_t(std::max<std::uint64_t>(
       1, (functions + plan.sample_rows - 1) / std::max<std::size_t>(plan.sample_rows, 1)));
   ReadResult result;
@@ -303,7 +175,7 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
   const ReflectanceField& header = reader.header();
   const ClusteringOptions& clustering = options.clustering;
   const int lights = header.lights();
-  const int cap = row_cap(options, lights);
+  const int cap = residual_row_cap(options, lights);
   const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
   BuiltPart part;
   part.sparse_counts.assign(std::size(sparseness_thresholds), 0.0);
@@ -353,6 +225,9 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
                                stats.residual_threshold, {}, strip_stats, clustering.threads);
     for (std::size_t level = 0; level < part.sparse_counts.size(); ++level)
       part.sparse_counts[level] += strip_stats.sparseness[level] * double(count);
+    merge_relative_errors(
+        part.float32_masked,
+        relative_error(strip, built, true, all_residual_entries, clustering.threads));
     if (by_peak)
       for (const std::uint32_t p : built.stored_function)
         part.peaks.push_back(strip.values.row(p).cwiseAbs().maxCoeff());
@@ -395,7 +270,7 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 
   // 1. Read: scratch rows, the sample, the dark model's sums; counts over all ranks.
   auto start = Clock::now();
-  ScratchRows scratch(plan.scratch_folder, scratch_name, lights);
+  ScratchRows scratch(plan.scratch_folder, scratch_name, lights, clustering.threads);
   ReadResult read =
       read_strips(reader, options, plan, stats.noise_floor, begin_row, end_row, scratch);
   std::vector<double> sums = read.dark_sum;
@@ -484,6 +359,7 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
     for (std::size_t level = 0; level < sparse.size(); ++level)
       sparse[level] += part.sparse_counts[level];
     build.objective += part.objective;
+    merge_relative_errors(result.float32_masked, part.float32_masked);
     build.changed += std::size_t(part.changed);
     if (part.original_sample.height > 0) {
       append_field_rows(result.original_sample, part.original_sample, 0,
@@ -510,13 +386,11 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 }
 
 FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
-                                    const CompressedField& stored, const CompressedField& float32,
-                                    int residual_entries, double white,
-                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
-                                    RelativeError& float32_masked, bool quiet) {
+                                    const CompressedField& stored, int residual_entries,
+                                    double white, const std::vector<std::uint8_t>& psnr_mask,
+                                    unsigned threads, bool quiet) {
   const ReflectanceField& header = reader.header();
   FieldErrors total;
-  float32_masked = {};
   ProgressReporter progress("compress: measuring the error", std::uint64_t(header.height), quiet);
   reader.rewind();
   for (int y = 0; y < header.height; y += strip_rows) {
@@ -532,9 +406,6 @@ FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
                        measure_field_errors(strip, compressed_rows(stored, y, rows),
                                             residual_entries, white, strip_mask, threads),
                        first_function);
-    const RelativeError before = relative_error(strip, compressed_rows(float32, y, rows), true,
-                                                all_residual_entries, threads);
-    merge_relative_errors(float32_masked, before);
     progress.advance(std::uint64_t(rows));
   }
   progress.finish();

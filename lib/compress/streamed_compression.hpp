@@ -10,7 +10,8 @@
 //     (compress/cluster_basis.hpp), which add across blocks; the new bases follow each pass.
 //  4. Build: the strips are read again; each is assigned to the final bases and its residual cut
 //     (build_compressed_field), and the strips' compressed fields are stacked.
-// The memory plan (plan_compression) says whether a field needs this and with what strips.
+// The memory plan (compress/compression_plan.hpp) says whether a field needs this and with what
+// strips.
 #pragma once
 
 #include <cstdint>
@@ -20,40 +21,11 @@
 #include <vector>
 
 #include "compress/clustered_factorization.hpp"
+#include "compress/compression_plan.hpp"
 #include "compress/field_errors.hpp"
 #include "field/field_strips.hpp"
 
 namespace relume {
-
-struct CompressionPlan {
-  bool streamed = false;
-  std::uint64_t budget = 0;           // bytes the run may use for its data
-  std::string budget_source;          // "--memory-limit", "MemAvailable", ...
-  std::uint64_t field_bytes = 0;      // the field as float32
-  std::uint64_t in_memory_bytes = 0;  // estimated need of the in-memory path
-  // Streamed only:
-  int strip_rows = 0;                 // pixel rows per strip
-  std::size_t sample_rows = 0;        // the clustering sample's rows, at most
-  std::size_t quantization_rows = 0;  // original functions kept to choose the quantization on
-  std::uint64_t model_bytes = 0;      // the compressed field, its copies and the pass state
-  std::uint64_t scratch_bytes = 0;    // the scratch file, at most
-  std::filesystem::path scratch_folder;
-
-  std::string describe() const;  // one line for the user
-};
-
-// The plan for a field of `header`'s shape (values empty; mask set) within `budget` bytes, with
-// `threads` workers: in memory when the estimate fits (and `stream_anyway` is false: several
-// ranks always stream), else streamed with the tallest strips and the largest sample that fit.
-// Throws Error with the numbers when even a one-row strip and the model do not fit.
-CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
-                                 std::uint64_t budget, const std::string& budget_source,
-                                 unsigned threads, const std::filesystem::path& scratch_folder,
-                                 bool stream_anyway = false);
-
-// Throws Error naming the first option that needs the whole field in memory (clustered PCA,
-// multi-resolution, light weighting, the trimmed refit, an exact refit).
-void check_streamable_options(const CompressionOptions& options);
 
 struct StreamedPass {
   int pass = 0;             // 1, 2, ... (the refinement passes), then the build pass
@@ -75,6 +47,9 @@ struct StreamedTrace {
 
 struct StreamedCompression {
   CompressedField field;  // float32, as compress_field returns it
+  // Eq. 16 of `field` over the masked functions, measured strip by strip as it was built (so
+  // that no float32 copy need be kept after quantization).
+  RelativeError float32_masked;
   // Evenly spaced pixel rows of the original, stacked, and where they are (first row, rows):
   // what the quantization is chosen against (store_with_precision_on_strips).
   ReflectanceField original_sample;
@@ -94,12 +69,10 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
                                       const ClusteringResume* resume = nullptr);
 
 // The report's errors of `stored` against the field `reader` reads, strip by strip
-// (field_errors.hpp), and in `float32_masked` the Eq. 16 error over the masked functions of
-// `float32`, the same compression before it was quantized.
+// (field_errors.hpp).
 FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
-                                    const CompressedField& stored, const CompressedField& float32,
-                                    int residual_entries, double white,
-                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
-                                    RelativeError& float32_masked, bool quiet);
+                                    const CompressedField& stored, int residual_entries,
+                                    double white, const std::vector<std::uint8_t>& psnr_mask,
+                                    unsigned threads, bool quiet);
 
 }  // namespace relume

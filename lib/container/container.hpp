@@ -43,8 +43,8 @@ ContainerLayout plan_container(const CompressedField& field, const ContainerOpti
 
 // The field as read_container would return it after write_container with `options`: W and
 // residual values rounded through half where asked (everything else is stored exactly).
-CompressedField quantize_for_container(const CompressedField& field,
-                                       const ContainerOptions& options);
+// (By value: pass it with std::move to round it without a copy.)
+CompressedField quantize_for_container(CompressedField field, const ContainerOptions& options);
 
 // The cost of the chosen precisions: relative_error (paper Eq. 16) of the quantised field against
 // the unquantised one, over its stored rows, with the full residual. Exactly 0 when everything is

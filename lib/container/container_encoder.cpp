@@ -215,23 +215,21 @@ ContainerLayout plan_container(const CompressedField& field, const ContainerOpti
   return layout;
 }
 
-CompressedField quantize_for_container(const CompressedField& field,
-                                       const ContainerOptions& options) {
+CompressedField quantize_for_container(CompressedField field, const ContainerOptions& options) {
   const std::string where = "cannot store the compressed field";
-  CompressedField quantized = field;
   if (stored_weight_precision(field, options) == ValuePrecision::float16)
-    for (Eigen::Index i = 0; i < quantized.weights.size(); ++i) {
-      float& w = quantized.weights.data()[i];
+    for (Eigen::Index i = 0; i < field.weights.size(); ++i) {
+      float& w = field.weights.data()[i];
       w = half_bits_to_float(checked_half(
           w, [&] { return weight_text(std::size_t(i), field.terms); }, where));
     }
   if (stored_residual_precision(field, options) == ValuePrecision::float16)
-    for (std::size_t k = 0; k < quantized.residual.values.size(); ++k) {
-      float& v = quantized.residual.values[k];
+    for (std::size_t k = 0; k < field.residual.values.size(); ++k) {
+      float& v = field.residual.values[k];
       v = half_bits_to_float(checked_half(
           v, [&] { return residual_entry_text(field.residual, k); }, where));
     }
-  return quantized;
+  return field;
 }
 
 RelativeError quantization_error(const CompressedField& field, const ContainerOptions& options) {

@@ -79,6 +79,13 @@ MemoryBudget memory_budget() {
   return budget;
 }
 
+std::uint64_t resident_memory_bytes() {
+  std::ifstream in("/proc/self/statm");
+  std::uint64_t pages = 0, resident = 0;
+  in >> pages >> resident;
+  return resident * std::uint64_t(::sysconf(_SC_PAGESIZE));
+}
+
 std::string byte_size_text(std::uint64_t bytes) {
   char text[32];
   if (bytes < 1024) return std::to_string(bytes) + " bytes";

@@ -24,6 +24,9 @@ MemoryBudget memory_budget();
 // when `bytes` is above the budget.
 void check_memory_need(std::uint64_t bytes, const std::string& what);
 
+// The process's resident memory now (/proc/self/statm): its code, libraries and data.
+std::uint64_t resident_memory_bytes();
+
 // "1.5 GB", "640 MB", "12 KB", "100 bytes".
 std::string byte_size_text(std::uint64_t bytes);
 

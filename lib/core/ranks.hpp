@@ -17,6 +17,8 @@ class Ranks {
 
   virtual int rank() const { return 0; }
   virtual int size() const { return 1; }
+  // The ranks on this machine, this one included: they share its memory.
+  virtual int local_size() const { return 1; }
   bool root() const { return rank() == 0; }
 
   // Element-wise sums over the ranks: into the root's `values` (the others' are left as they

@@ -98,9 +98,9 @@ ReflectanceField FieldStripReader::read(int first_row, int rows) {
   strip.values.resize(strip.pixels() * strip.channels, lights);
   parallel_for(readers_.size(), threads_, [&](std::size_t i, unsigned) {
     ImageRowReader& image = readers_[i];
-    // Rows skipped since the last strip are read and dropped: sequential formats read forward.
+    // Rows skipped since the last strip: OpenImageIO seeks (EXR, TIFF) or reads past them (PNG,
+    // JPEG, which decode forward).
     std::vector<float> pixels(std::size_t(strip.pixels()) * image.channels());
-    for (int row = next_row_; row < first_row; ++row) image.read_rows(row, 1, pixels.data());
     image.read_rows(first_row, rows, pixels.data());
     store_light_rows(strip, int(i), pixels.data(), image.channels(), first_row, images_[i]);
   });

@@ -132,8 +132,7 @@ float finest_step(float largest) { return largest / float(max_quantized_value - 
 
 }  // namespace
 
-CompressedField quantize_values(const CompressedField& field, const QuantizationSteps& steps) {
-  CompressedField quantized = field;
+CompressedField quantize_values(CompressedField quantized, const QuantizationSteps& steps) {
   if (steps.basis_bits > 0) quantize_bases(quantized, steps.basis_bits);
   if (steps.weight_step > 0) {
     for (Eigen::Index r = 0; r < quantized.weights.rows(); ++r)
@@ -224,7 +223,7 @@ QuantizationChoice quantize_with_budget(const ReflectanceField& original, Compre
     choice.cluster_terms = terms.cluster_terms;
     choice.error_all_terms = terms.error_all_terms;
   }
-  field = quantize_values(field, choice.steps);
+  field = quantize_values(std::move(field), choice.steps);
   return choice;
 }
 

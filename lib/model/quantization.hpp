@@ -25,7 +25,8 @@ struct QuantizationSteps {
 // The field with its values rounded to `steps` and field.quantization set to say so. Residual
 // entries that round to zero are dropped (rows stay sorted by |value|). Throws Error when a step
 // would make an integer beyond max_quantized_value or basis_bits is outside 8..16.
-CompressedField quantize_values(const CompressedField& field, const QuantizationSteps& steps);
+// Takes the field by value: pass it with std::move to quantize it without a copy.
+CompressedField quantize_values(CompressedField field, const QuantizationSteps& steps);
 
 struct QuantizationBudget {
   double relative_increase = 0.01;  // of the Eq. 16 error over the stored rows

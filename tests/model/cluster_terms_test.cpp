@@ -61,8 +61,9 @@ TEST(ClusterTerms, ClustersKeepOnlyTheDirectionsTheirFunctionsSpan) {
   const std::vector<std::uint8_t> used = used_basis_rows(field);
   for (std::size_t r = 0; r < field.stored_rows(); ++r)
     for (int j = 0; j < field.terms; ++j)
-      if (!used[std::size_t(field.cluster[r]) * field.terms + j])
+      if (!used[std::size_t(field.cluster[r]) * field.terms + j]) {
         ASSERT_EQ(field.weights(Eigen::Index(r), j), 0.0f) << r << " " << j;
+      }
 }
 
 TEST(ClusterTerms, ReportsTheErrorTheFieldHasAndKeepsTheBudget) {
