@@ -8,9 +8,10 @@
 #    --memory-limit 3G, and the 640x640 one also streamed under 400M: seconds, peak memory,
 #    scratch bytes, Eq. 16 error and seconds per stored function, in memory and streamed.
 #  24mp: a 6000x4000, 60-light hemisphere field (17 GB as float32) within 4 GB.
-#  mpi: the 640x640x253 field streamed (--memory-limit 400M) by 1, 2, 4 and 8 ranks of one
-#    thread (mpirun --oversubscribe: 4 and 8 share this machine's cores), each rank's time outside
-#    the exchanges and bytes sent per pass, and a model of the efficiency at 8 and 64 ranks.
+#  mpi: the 640x640x253 field (MPI_FIELD_SIDE overrides the side) streamed (--memory-limit 400M)
+#    by 1, 2, 4 and 8 ranks of one thread (mpirun --oversubscribe: 4 and 8 share this machine's
+#    cores), each rank's time outside the exchanges and bytes sent, and a model of the efficiency
+#    at 8 and 64 ranks.
 #   scripts/bench_scale.sh [BUILD_DIR] [OUT_DIR] [lights|fields|24mp|mpi ...]   (default: lights)
 # Writes OUT_DIR/scale_<part>.csv; the synthetic fields are kept in OUT_DIR for reruns (the big
 # ones take tens of GB of disk).
@@ -101,8 +102,10 @@ fields)
   cat "$csv"
 ;;
 mpi)
-  field="$out/synth_640_253"
-  [ -d "$field" ] || "$relume" -q synth -o "$field" --size 640x640 --lights 253 --samples 1
+  side="${MPI_FIELD_SIDE:-640}"
+  field="$out/synth_${side}_253"
+  [ -d "$field" ] || "$relume" -q synth -o "$field" --size "${side}x${side}" --lights 253 \
+    --samples 1
   csv="$out/scale_mpi.csv"
   echo "ranks,seconds,passes,rank_compute_seconds,rank_bytes_sent,error_masked" >"$csv"
   for ranks in 1 2 4 8; do
