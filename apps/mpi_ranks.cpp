@@ -46,7 +46,7 @@ class MpiRanks final : public Ranks {
     for (std::size_t done = 0; done < count;) {
       const int n = int(std::min(count - done, chunk_bytes / sizeof(double)));
       MPI_Allreduce(MPI_IN_PLACE, values + done, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-      sent_ += std::uint64_t(n) * sizeof(double);
+      if (size_ > 1) sent_ += std::uint64_t(n) * sizeof(double);
       done += std::size_t(n);
     }
   }

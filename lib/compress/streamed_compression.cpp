@@ -3,8 +3,6 @@
 #include "compress/streamed_compression.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <relume/error.hpp>
 
 #include "compress/cluster_basis.hpp"
@@ -13,12 +11,10 @@
 #include "compress/scratch_rows.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/interruption.hpp"
-#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/ranks.hpp"
 #include "model/compressed_field_rows.hpp"
-#include "model/quantization.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -332,7 +328,6 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   // 4. Build: the strips again, assigned to the final bases; the parts gathered at the root.
   start = Clock::now();
   stats.residual_entries = options.residual.entries_for(lights);
-  const auto build_start = Clock::now();
   std::vector<BuiltPart> parts =
       gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
                                      scratch.rows(), begin_row, end_row));
@@ -368,7 +363,7 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
                                 part.sample_rows.end());
     }
   }
-  build.seconds = seconds_since(build_start);
+  build.seconds = seconds_since(start);
   trace.passes.push_back(build);
   out.clusters = bases.clusters;
   out.bases = bases.bases;
