@@ -325,12 +325,22 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   std::optional<StreamedTrace> streamed;
   nlohmann::ordered_json target_choice;
   const char* target_key = arguments.target_error > 0 ? "target_error" : "rate_target";
+  // A streamed run's errors, strip by strip; with several ranks every rank measures its band of
+  // what the root stores.
+  const auto measure_streamed = [&](const CompressedField& stored_at_root) {
+    return measure_streamed_errors(*reader, plan.strip_rows, stored_at_root,
+                                   stats.residual_entries, arguments.psnr_white, psnr_mask,
+                                   threads, options.clustering.quiet);
+  };
   auto quantize_start = Clock::now();
   if (plan.streamed) {
     StreamedCompression result = compress_streamed(
         *reader, options, plan, stats, streamed.emplace(), output.filename().string() + ".scratch",
         hook, resume ? &*resume : nullptr);
-    if (!ranks.root()) return nlohmann::ordered_json();  // the root writes and reports
+    if (!ranks.root()) {  // the root writes and reports
+      measure_streamed(CompressedField{});
+      return nlohmann::ordered_json();
+    }
     quantize_start = Clock::now();
     stored = std::move(result.field);
     float32_masked = result.float32_masked;
@@ -369,9 +379,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   CompressionRun run;
   run.threads = resolve_thread_count(threads);
   if (plan.streamed) {
-    run.errors =
-        measure_streamed_errors(*reader, plan.strip_rows, stored, stats.residual_entries,
-                                arguments.psnr_white, psnr_mask, threads, options.clustering.quiet);
+    run.errors = measure_streamed(stored);
   } else {
     run.errors = measure_field_errors(*field, stored, stats.residual_entries, arguments.psnr_white,
                                       psnr_mask, threads);

@@ -68,35 +68,50 @@ class MpiRanks final : public Ranks {
     const Timer timer(this);
     std::vector<std::string> parts;
     if (rank_ != 0) {
-      std::uint64_t size = bytes.size();
-      MPI_Send(&size, 1, MPI_UINT64_T, 0, 0, MPI_COMM_WORLD);
-      for (std::size_t done = 0; done < size;) {
-        const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
-        MPI_Send(bytes.data() + done, n, MPI_CHAR, 0, 0, MPI_COMM_WORLD);
-        done += std::size_t(n);
-      }
-      sent_ += size;
+      send(bytes, 0);
       return parts;
     }
     parts.push_back(bytes);
-    for (int from = 1; from < size_; ++from) {
-      std::uint64_t size = 0;
-      MPI_Recv(&size, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      std::string part(size, '\0');
-      for (std::size_t done = 0; done < size;) {
-        const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
-        MPI_Recv(part.data() + done, n, MPI_CHAR, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        done += std::size_t(n);
-      }
-      parts.push_back(std::move(part));
-    }
+    for (int from = 1; from < size_; ++from) parts.push_back(receive(from));
     return parts;
+  }
+
+  std::string scatter_from_root(std::vector<std::string> parts) override {
+    const Timer timer(this);
+    if (rank_ != 0) return receive(0);
+    for (int to = 1; to < size_; ++to) send(parts.at(std::size_t(to)), to);
+    return std::move(parts.at(0));
   }
 
   std::uint64_t bytes_sent() const override { return sent_; }
   double exchange_seconds() const override { return exchange_seconds_; }
 
  private:
+  // Bytes to one rank: their size, then chunks.
+  void send(const std::string& bytes, int to) {
+    std::uint64_t size = bytes.size();
+    MPI_Send(&size, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
+    for (std::size_t done = 0; done < size;) {
+      const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
+      MPI_Send(bytes.data() + done, n, MPI_CHAR, to, 0, MPI_COMM_WORLD);
+      done += std::size_t(n);
+    }
+    sent_ += size;
+  }
+
+  // What send() sent from one rank.
+  std::string receive(int from) {
+    std::uint64_t size = 0;
+    MPI_Recv(&size, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::string bytes(size, '\0');
+    for (std::size_t done = 0; done < size;) {
+      const int n = int(std::min<std::size_t>(size - done, chunk_bytes));
+      MPI_Recv(bytes.data() + done, n, MPI_CHAR, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      done += std::size_t(n);
+    }
+    return bytes;
+  }
+
   // Adds the time of one exchange to exchange_seconds_.
   struct Timer {
     explicit Timer(MpiRanks* ranks) : ranks_(ranks), start_(Clock::now()) {}

@@ -86,7 +86,7 @@ void merge_field_errors(FieldErrors& total, const FieldErrors& strip, std::int64
   merge_relative_errors(total.masked, strip.masked);
   if (total.masked_by_prefix.empty()) {
     total.masked_by_prefix = strip.masked_by_prefix;
-  } else {
+  } else if (!strip.masked_by_prefix.empty()) {  // empty: nothing was measured
     for (std::size_t i = 0; i < total.masked_by_prefix.size(); ++i)
       merge_relative_errors(total.masked_by_prefix[i].second, strip.masked_by_prefix[i].second);
   }

@@ -8,6 +8,7 @@
 
 #include "container/container.hpp"
 #include "container/container_bytes.hpp"
+#include "model/compressed_field_rows.hpp"
 
 namespace relume {
 namespace {
@@ -26,6 +27,47 @@ std::vector<T> take_array(ByteReader& in) {
   const std::string_view bytes = in.bytes(count * sizeof(T));
   if (count > 0) std::memcpy(values.data(), bytes.data(), bytes.size());
   return values;
+}
+
+template <class T>
+void put_value(ByteWriter& out, const T& value) {
+  out.bytes(std::string_view(reinterpret_cast<const char*>(&value), sizeof(T)));
+}
+
+template <class T>
+T take_value(ByteReader& in) {
+  T value;
+  std::memcpy(&value, in.bytes(sizeof(T)).data(), sizeof(T));
+  return value;
+}
+
+void put_error(ByteWriter& out, const RelativeError& error) {
+  put_value(out, error.mean);
+  put_value(out, error.functions_averaged);
+  put_value(out, error.zero_energy_skipped);
+}
+
+RelativeError take_error(ByteReader& in) {
+  RelativeError error;
+  error.mean = take_value<double>(in);
+  error.functions_averaged = take_value<std::int64_t>(in);
+  error.zero_energy_skipped = take_value<std::int64_t>(in);
+  return error;
+}
+
+// A compressed field as container bytes that decode to exactly its values: float32 where they
+// are not quantized, unchanged integers where they are.
+void put_field(ByteWriter& out, const CompressedField& field, const std::string& where) {
+  ContainerOptions lossless;
+  lossless.weights = ValuePrecision::float32;
+  lossless.residual = ValuePrecision::float32;
+  const std::string bytes = encode_container(field, lossless, where, nullptr);
+  put_array(out, bytes.data(), bytes.size());
+}
+
+CompressedField take_field(ByteReader& in, const std::string& where) {
+  const std::vector<char> bytes = take_array<char>(in);
+  return decode_container(std::string(bytes.begin(), bytes.end()), where);
 }
 
 }  // namespace
@@ -96,20 +138,12 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
   }
   ByteWriter out;
   if (!ranks.root()) {
-    ContainerOptions lossless;
-    lossless.weights = ValuePrecision::float32;
-    lossless.residual = ValuePrecision::float32;
-    const std::string field =
-        encode_container(local.field, lossless, "cannot send a part", nullptr);
-    put_array(out, field.data(), field.size());
+    put_field(out, local.field, "cannot send a part");
     put_array(out, local.peaks.data(), local.peaks.size());
     put_array(out, local.sparse_counts.data(), local.sparse_counts.size());
-    put_array(out, &local.objective, 1);
-    put_array(out, &local.changed, 1);
-    const double error[3] = {local.float32_masked.mean,
-                             double(local.float32_masked.functions_averaged),
-                             double(local.float32_masked.zero_energy_skipped)};
-    put_array(out, error, 3);
+    put_value(out, local.objective);
+    put_value(out, local.changed);
+    put_error(out, local.float32_masked);
     const ReflectanceField& sample = local.original_sample;
     out.u32(std::uint32_t(sample.width));
     out.u32(std::uint32_t(sample.height));
@@ -128,15 +162,12 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
     const std::string where = "the part of rank " + std::to_string(r);
     ByteReader in(messages[r], where);
     BuiltPart part;
-    const std::vector<char> field = take_array<char>(in);
-    part.field = decode_container(std::string(field.begin(), field.end()), where);
+    part.field = take_field(in, where);
     part.peaks = take_array<double>(in);
     part.sparse_counts = take_array<double>(in);
-    part.objective = take_array<double>(in).at(0);
-    part.changed = take_array<double>(in).at(0);
-    const std::vector<double> error = take_array<double>(in);
-    if (error.size() != 3) in.fail("a malformed error");
-    part.float32_masked = {error[0], std::int64_t(error[1]), std::int64_t(error[2])};
+    part.objective = take_value<double>(in);
+    part.changed = take_value<double>(in);
+    part.float32_masked = take_error(in);
     ReflectanceField& sample = part.original_sample;
     sample.width = int(in.u32());
     sample.height = int(in.u32());
@@ -152,6 +183,87 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
     parts.push_back(std::move(part));
   }
   return parts;
+}
+
+CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole, int height) {
+  const RankShare own = rank_share(ranks, height);
+  if (ranks.size() == 1) return compressed_rows(whole, own.first, own.end - own.first);
+  std::vector<std::string> bands;
+  if (ranks.root()) {
+    for (int r = 0; r < ranks.size(); ++r) {
+      const RankShare share = rank_share(ranks, height, r);
+      ByteWriter out;
+      put_field(out, compressed_rows(whole, share.first, share.end - share.first),
+                "cannot send the band of rank " + std::to_string(r));
+      bands.push_back(out.take());
+    }
+  }
+  const std::string band = ranks.scatter_from_root(std::move(bands));
+  ByteReader in(band, "the band of rank " + std::to_string(ranks.rank()));
+  return take_field(in, "the band of rank " + std::to_string(ranks.rank()));
+}
+
+FieldErrors gather_errors(Ranks& ranks, FieldErrors local, std::int64_t first_function) {
+  if (ranks.size() == 1) return local;
+  ByteWriter out;
+  if (!ranks.root()) {
+    put_value(out, first_function);
+    put_error(out, local.all);
+    put_error(out, local.masked);
+    out.u64(local.masked_by_prefix.size());
+    for (const auto& [cap, error] : local.masked_by_prefix) {
+      put_value(out, cap);
+      put_error(out, error);
+    }
+    const PerLightError& light = local.per_light;
+    put_value(out, light.largest);
+    put_value(out, light.function);
+    put_value(out, light.light);
+    put_value(out, light.mean_of_largest);
+    put_array(out, light.functions_above.data(), light.functions_above.size());
+    put_value(out, light.functions_measured);
+    put_value(out, light.zero_peak_skipped);
+    put_value(out, light.negative_values);
+    put_value(out, light.values_measured);
+    put_value(out, light.most_negative);
+    put_value(out, local.psnr);
+    put_value(out, local.psnr_pixels);
+    put_value(out, local.psnr_mask_pixels);
+  }
+  const std::vector<std::string> messages = ranks.gather_to_root(out.data());
+  if (!ranks.root()) return local;
+  // As measure_streamed_errors merges strips: the root's band is the first.
+  FieldErrors total;
+  merge_field_errors(total, local, first_function);
+  for (std::size_t r = 1; r < messages.size(); ++r) {
+    ByteReader in(messages[r], "the errors of rank " + std::to_string(r));
+    const auto first = take_value<std::int64_t>(in);
+    FieldErrors errors;
+    errors.all = take_error(in);
+    errors.masked = take_error(in);
+    const std::uint64_t caps = in.u64();
+    if (caps > in.remaining()) in.fail("more residual caps than the message holds");
+    for (std::uint64_t i = 0; i < caps; ++i) {
+      const int cap = take_value<int>(in);
+      errors.masked_by_prefix.emplace_back(cap, take_error(in));
+    }
+    PerLightError& light = errors.per_light;
+    light.largest = take_value<double>(in);
+    light.function = take_value<std::int64_t>(in);
+    light.light = take_value<int>(in);
+    light.mean_of_largest = take_value<double>(in);
+    light.functions_above = take_array<double>(in);
+    light.functions_measured = take_value<std::int64_t>(in);
+    light.zero_peak_skipped = take_value<std::int64_t>(in);
+    light.negative_values = take_value<std::int64_t>(in);
+    light.values_measured = take_value<std::int64_t>(in);
+    light.most_negative = take_value<double>(in);
+    errors.psnr = take_value<Psnr8>(in);
+    errors.psnr_pixels = take_value<std::int64_t>(in);
+    errors.psnr_mask_pixels = take_value<std::int64_t>(in);
+    merge_field_errors(total, errors, first);
+  }
+  return total;
 }
 
 }  // namespace relume

@@ -1,8 +1,9 @@
 // What the ranks of a distributed streamed compression (core/ranks.hpp) exchange, packed into
 // bytes: every rank's share of the clustering sample (gathered at the root, which clusters it),
 // the bases (broadcast by the root after every solve), the F-step's sums (added up at the root),
-// and every rank's part of the compressed field (gathered at the root, which writes the file).
-// With one process each is a plain copy.
+// every rank's part of the compressed field (gathered at the root, which writes the file), then
+// every rank's band of the stored field (sent by the root) and the errors each rank measured on
+// it (merged at the root). With one process each is a plain copy.
 #pragma once
 
 #include <relume/compressed_field.hpp>
@@ -12,6 +13,7 @@
 
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_model.hpp"
+#include "compress/field_errors.hpp"
 #include "core/ranks.hpp"
 
 namespace relume {
@@ -40,5 +42,14 @@ struct BuiltPart {
 
 // Every rank's part at the root, in rank order (the root's own first); empty elsewhere.
 std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local);
+
+// This rank's pixel rows [band.first, band.end) of the root's `whole` field (ignored elsewhere),
+// as a compressed field of their own (compressed_rows).
+CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole, int height);
+
+// Every rank's errors of its band (its first function `first_function` of the field) merged at
+// the root in rank order, as measuring the bands stacked gives (merge_field_errors); this rank's
+// own elsewhere.
+FieldErrors gather_errors(Ranks& ranks, FieldErrors local, std::int64_t first_function);
 
 }  // namespace relume

@@ -3,6 +3,7 @@
 #include "compress/streamed_compression.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <relume/error.hpp>
 
 #include "compress/cluster_basis.hpp"
@@ -261,8 +262,8 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.residual_threshold =
       options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
   // This rank's pixel rows.
-  const int begin_row = int(std::int64_t(header.height) * ranks.rank() / ranks.size());
-  const int end_row = int(std::int64_t(header.height) * (ranks.rank() + 1) / ranks.size());
+  const RankShare band = rank_share(ranks, header.height);
+  const int begin_row = band.first, end_row = band.end;
 
   // 1. Read: scratch rows, the sample, the dark model's sums; counts over all ranks.
   auto start = Clock::now();
@@ -384,27 +385,34 @@ FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
                                     const CompressedField& stored, int residual_entries,
                                     double white, const std::vector<std::uint8_t>& psnr_mask,
                                     unsigned threads, bool quiet) {
+  Ranks& ranks = process_ranks();
   const ReflectanceField& header = reader.header();
+  const RankShare band = rank_share(ranks, header.height);
+  // One process measures `stored` itself; several get their bands from the root.
+  std::optional<CompressedField> received;
+  if (ranks.size() > 1) received = scatter_bands(ranks, stored, header.height);
+  const CompressedField& stored_band = received ? *received : stored;
+  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
   FieldErrors total;
-  ProgressReporter progress("compress: measuring the error", std::uint64_t(header.height), quiet);
+  ProgressReporter progress("compress: measuring the error", std::uint64_t(band.end - band.first),
+                            quiet);
   reader.rewind();
-  for (int y = 0; y < header.height; y += strip_rows) {
+  for (int y = band.first; y < band.end; y += strip_rows) {
     throw_if_interrupted();
-    const int rows = std::min(strip_rows, header.height - y);
+    const int rows = std::min(strip_rows, band.end - y);
     const ReflectanceField strip = reader.read(y, rows);
     std::vector<std::uint8_t> strip_mask;
     if (!psnr_mask.empty())
       strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
                         psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
-    const std::int64_t first_function = std::int64_t(y) * header.width * header.channels;
     merge_field_errors(total,
-                       measure_field_errors(strip, compressed_rows(stored, y, rows),
+                       measure_field_errors(strip, compressed_rows(stored_band, y - band.first, rows),
                                             residual_entries, white, strip_mask, threads),
-                       first_function);
+                       (y - band.first) * row_functions);
     progress.advance(std::uint64_t(rows));
   }
   progress.finish();
-  return total;
+  return gather_errors(ranks, std::move(total), band.first * row_functions);
 }
 
 }  // namespace relume

@@ -69,7 +69,9 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
                                       const ClusteringResume* resume = nullptr);
 
 // The report's errors of `stored` against the field `reader` reads, strip by strip
-// (field_errors.hpp).
+// (field_errors.hpp). With several ranks (core/ranks.hpp) every rank calls it: the root, which
+// holds `stored` (ignored elsewhere), sends each rank its band of pixel rows, each measures its
+// band, and the root gets the merged errors.
 FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
                                     const CompressedField& stored, int residual_entries,
                                     double white, const std::vector<std::uint8_t>& psnr_mask,

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace relume {
@@ -29,11 +30,25 @@ class Ranks {
   virtual void broadcast(std::string& /*bytes*/) {}
   // Every rank's bytes, in rank order, at the root; empty elsewhere.
   virtual std::vector<std::string> gather_to_root(const std::string& bytes) { return {bytes}; }
+  // The root's parts[r] to rank r (`parts` has one per rank at the root, is ignored elsewhere):
+  // this rank's part.
+  virtual std::string scatter_from_root(std::vector<std::string> parts) {
+    return std::move(parts.at(0));
+  }
   // Bytes this rank has sent to the others so far, and the seconds it spent in the exchanges
   // (sending, receiving and waiting for the others).
   virtual std::uint64_t bytes_sent() const { return 0; }
   virtual double exchange_seconds() const { return 0; }
 };
+
+// Rank `rank`'s share [first, end) of `count` items split over the ranks in rank order.
+struct RankShare {
+  int first = 0, end = 0;
+};
+RankShare rank_share(const Ranks& ranks, int count, int rank);
+inline RankShare rank_share(const Ranks& ranks, int count) {
+  return rank_share(ranks, count, ranks.rank());
+}
 
 // The ranks of this process's run: one process unless set_process_ranks installed others (the
 // command does, under mpirun).

@@ -1,6 +1,7 @@
 // Tests of `mpirun -n N relume compress` (the command built with MPI, apps/mpi_ranks.*): 1, 2 and
-// 3 ranks on loopback compress one field (streamed) within 1% of one process's error, a rank
-// count gives the same bytes every time, the report says how the ranks shared the work, and a
+// 3 ranks on loopback compress one field (streamed) within 1% of one process's error, to the
+// same container and, measured band by band, the same errors as one rank, a rank count gives the
+// same bytes every time, the report says how the ranks shared the work, and a
 // failure on one rank (a truncated image under its rows only) ends every rank with that rank's
 // message and leaves no output.
 #include <gtest/gtest.h>
@@ -71,6 +72,26 @@ TEST_F(MpiCompress, RanksShareTheWorkAndReachTheSingleProcessQuality) {
       EXPECT_EQ(report["streamed"]["rank_bytes_sent"].size(), std::size_t(ranks));
       EXPECT_EQ(report["streamed"]["rank_compute_seconds"].size(), std::size_t(ranks));
       EXPECT_GT(report["streamed"]["rank_bytes_sent"][1].get<double>(), 0);
+    }
+    if (ranks > 1) {
+      // The same model as one rank's, whose errors each rank measured on its own band of rows:
+      // merged at the root they are one rank's (up to the order of the sums), down to where the
+      // largest per-light error is.
+      const nlohmann::json one = read_json(dir_ / "ranks1.json");
+      EXPECT_TRUE(read_file(dir_ / (name + ".relume")) == read_file(dir_ / "ranks1.relume"));
+      EXPECT_NEAR(report["psnr_8bit"]["whole_frame"].get<double>(),
+                  one["psnr_8bit"]["whole_frame"].get<double>(), 1e-9);
+      EXPECT_NEAR(report["psnr_8bit"]["mask"].get<double>(),
+                  one["psnr_8bit"]["mask"].get<double>(), 1e-9);
+      EXPECT_NEAR(report["error_all"].get<double>(), one["error_all"].get<double>(), 1e-12);
+      const nlohmann::json& light = report["per_light_error_masked"];
+      const nlohmann::json& one_light = one["per_light_error_masked"];
+      EXPECT_EQ(light["largest_at"], one_light["largest_at"]);
+      EXPECT_EQ(light["largest_relative"], one_light["largest_relative"]);
+      EXPECT_EQ(light["functions_measured"], one_light["functions_measured"]);
+      EXPECT_EQ(light["negative_values"], one_light["negative_values"]);
+      EXPECT_EQ(report["error_masked_detail"]["functions_averaged"],
+                one["error_masked_detail"]["functions_averaged"]);
     }
     const double error = report["error_masked"].get<double>();
     std::printf("%d ranks: error_masked %.6f (one process, no mpirun: %.6f)\n", ranks, error,
