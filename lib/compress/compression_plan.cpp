@@ -20,6 +20,12 @@ constexpr std::uint64_t sample_bytes_per_value = 12;
 // Rows a whole-field quantization choice measures (QuantizationBudget::sample_rows).
 constexpr std::uint64_t quantization_sample_rows = QuantizationBudget{}.sample_rows;
 
+// A strip's float32 values at most (the refinement passes' blocks of scratch rows are a strip's
+// functions too). Taller strips only save reads, but arrays above glibc's largest mmap threshold
+// (32 MiB) are mapped fresh and faulted in page by page every time one is allocated: with 160 MB
+// strips at 1280 x 1280 x 253, the passes spent more time in the kernel than computing.
+constexpr std::uint64_t strip_value_bytes_at_most = std::uint64_t(16) << 20;
+
 }  // namespace
 
 std::uint64_t functions_inside_mask(const ReflectanceField& header) {
@@ -111,7 +117,8 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   std::uint64_t left = budget / 20 * 17 - std::min(budget / 20 * 17, plan.model_bytes);
   // An eighth of what is left to the quantization's original rows, two thirds of the rest to the
   // clustering sample (the more rows the clusters are found on, the closer the result is to the
-  // in-memory one), the rest to the strips (their height only sets how many reads there are).
+  // in-memory one), the rest to the strips (their height only sets how many reads there are, up
+  // to strip_value_bytes_at_most).
   plan.quantization_rows = std::size_t(std::clamp<std::uint64_t>(
       left / 8 / original_row_bytes, row_functions,
       std::min<std::uint64_t>(functions, quantization_sample_rows) + row_functions));
@@ -119,8 +126,10 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   plan.sample_rows = std::size_t(
       std::max(fewest_sample, std::min<std::uint64_t>(functions, left / 3 * 2 / sample_row_bytes)));
   const std::uint64_t for_strips = left - std::min(left, plan.sample_rows * sample_row_bytes);
-  plan.strip_rows =
-      int(std::clamp<std::uint64_t>(for_strips / strip_row_bytes, 1, std::uint64_t(header.height)));
+  const std::uint64_t tallest =
+      std::max<std::uint64_t>(1, strip_value_bytes_at_most / (row_functions * lights * 4));
+  plan.strip_rows = int(std::clamp<std::uint64_t>(for_strips / strip_row_bytes, 1,
+                                                  std::min<std::uint64_t>(tallest, header.height)));
   return plan;
 }
 

@@ -179,6 +179,29 @@ TEST_F(StreamedRun, ThePlanStaysInMemoryWhenTheFieldFitsAndRefusesWhenNothingFit
   EXPECT_NE(refusal.find("1000 bytes"), std::string::npos) << refusal;
 }
 
+// A roomy budget for a large field still reads it in strips of at most 16 MiB of values (the
+// passes' blocks are as large): larger arrays are mapped and faulted in afresh at every
+// allocation, which made the 1280 x 1280 x 253 passes several times slower per row.
+TEST(CompressionPlan, StripsStaySmallUnderALargeBudget) {
+  ReflectanceField header;
+  header.width = 1280;
+  header.height = 1280;
+  header.channels = 3;
+  header.values.resize(0, 253);
+  header.mask.assign(std::size_t(header.pixels()), 1);
+  CompressionOptions options;  // the scale benchmark's
+  options.clustering.clusters = 64;
+  options.clustering.terms = 4;
+  options.residual.entries = 12;
+  const CompressionPlan plan =
+      plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch");
+  ASSERT_TRUE(plan.streamed);
+  const std::uint64_t strip_bytes = std::uint64_t(plan.strip_rows) * 1280 * 3 * 253 * 4;
+  EXPECT_LE(strip_bytes, std::uint64_t(16) << 20);
+  EXPECT_GT(strip_bytes, std::uint64_t(8) << 20) << "as tall as the cap allows: "
+                                                 << plan.strip_rows << " rows";
+}
+
 TEST(ScratchRows, RowsComeBackAtHalfPrecisionAndTheFileGoes) {
   testing::TempDir dir;
   WorkingRows rows;
