@@ -56,11 +56,13 @@ RelativeError take_error(ByteReader& in) {
 }
 
 // A compressed field as container bytes that decode to exactly its values: float32 where they
-// are not quantized, unchanged integers where they are.
+// are not quantized, unchanged integers where they are. The sections go raw: zstd at the file's
+// level compresses a few tens of MB/s, far slower than any link between ranks.
 void put_field(ByteWriter& out, const CompressedField& field, const std::string& where) {
   ContainerOptions lossless;
   lossless.weights = ValuePrecision::float32;
   lossless.residual = ValuePrecision::float32;
+  lossless.entropy_coding = false;
   const std::string bytes = encode_container(field, lossless, where, nullptr);
   put_array(out, bytes.data(), bytes.size());
 }
