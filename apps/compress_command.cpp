@@ -239,6 +239,7 @@ nlohmann::ordered_json streamed_json(const StreamedTrace& trace) {
                       {"changed", pass.changed},
                       {"seconds", pass.seconds}});
   return {{"strips", trace.strips},
+          {"rank_stored_functions", trace.rank_stored_rows},
           {"rank_compute_seconds", trace.rank_compute_seconds},
           {"rank_bytes_sent", trace.rank_bytes_sent},
           {"sample_rows", trace.sample_rows},
@@ -323,12 +324,13 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   RelativeError float32_masked;
   std::optional<QuantizationChoice> quantization;
   std::optional<StreamedTrace> streamed;
+  std::vector<int> streamed_bands;  // every rank's pixel rows (StreamedCompression::bands)
   nlohmann::ordered_json target_choice;
   const char* target_key = arguments.target_error > 0 ? "target_error" : "rate_target";
   // A streamed run's errors, strip by strip; with several ranks every rank measures its band of
   // what the root stores.
   const auto measure_streamed = [&](const CompressedField& stored_at_root) {
-    return measure_streamed_errors(*reader, plan.strip_rows, stored_at_root,
+    return measure_streamed_errors(*reader, streamed_bands, plan.strip_rows, stored_at_root,
                                    stats.residual_entries, arguments.psnr_white, psnr_mask,
                                    threads, options.clustering.quiet);
   };
@@ -337,6 +339,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     StreamedCompression result = compress_streamed(
         *reader, options, plan, stats, streamed.emplace(), output.filename().string() + ".scratch",
         hook, resume ? &*resume : nullptr);
+    streamed_bands = result.bands;
     if (!ranks.root()) {  // the root writes and reports
       measure_streamed(CompressedField{});
       return nlohmann::ordered_json();

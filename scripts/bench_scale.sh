@@ -10,8 +10,9 @@
 #  24mp: a 6000x4000, 60-light hemisphere field (17 GB as float32) within 4 GB.
 #  mpi: the 640x640x253 field (MPI_FIELD_SIDE overrides the side) streamed (--memory-limit 400M)
 #    by 1, 2, 4 and 8 ranks of one thread (mpirun --oversubscribe: 4 and 8 share this machine's
-#    cores), each rank's time outside the exchanges and bytes sent, and a model of the efficiency
-#    at 8 and 64 ranks.
+#    cores), each rank's stored functions, time outside the exchanges and bytes sent, and a model
+#    of the efficiency at 8 and 64 ranks. MPI_RUNS=N (default 1) runs 1 and 2 ranks N times each,
+#    alternating, for the median speed-up (one run's time varies by 10% on a shared machine).
 #   scripts/bench_scale.sh [BUILD_DIR] [OUT_DIR] [lights|fields|24mp|mpi ...]   (default: lights)
 # Writes OUT_DIR/scale_<part>.csv; the synthetic fields are kept in OUT_DIR for reruns (the big
 # ones take tens of GB of disk).
@@ -107,17 +108,21 @@ mpi)
   [ -d "$field" ] || "$relume" -q synth -o "$field" --size "${side}x${side}" --lights 253 \
     --samples 1
   csv="$out/scale_mpi.csv"
-  echo "ranks,seconds,passes,rank_compute_seconds,rank_bytes_sent,error_masked" >"$csv"
-  for ranks in 1 2 4 8; do
+  echo "run,ranks,seconds,passes,rank_stored_functions,rank_compute_seconds,rank_bytes_sent,error_masked" >"$csv"
+  runs=()
+  for run in $(seq "${MPI_RUNS:-1}"); do runs+=("$run 1" "$run 2"); done
+  for run_ranks in "${runs[@]}" "1 4" "1 8"; do
+    read -r run ranks <<<"$run_ranks"
     report="$out/report_mpi_$ranks.json"
     mpirun --allow-run-as-root --oversubscribe -n "$ranks" "$relume" -q --memory-limit 400M \
       compress "$field" -o "$out/mpi_$ranks.relume" -y --clusters 64 --terms 4 --residual 12 \
       --threads 1 --scratch "$out/scratch" --report "$report"
-    /usr/bin/python3 - "$report" "$ranks" >>"$csv" <<'PY'
+    /usr/bin/python3 - "$report" "$run" "$ranks" >>"$csv" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 s = r["streamed"]
-print(",".join([sys.argv[2], f"{r['seconds']:.4g}", str(len(s["passes"])),
+print(",".join([sys.argv[2], sys.argv[3], f"{r['seconds']:.4g}", str(len(s["passes"])),
+                ";".join(str(v) for v in s["rank_stored_functions"]),
                 ";".join(f"{v:.3g}" for v in s["rank_compute_seconds"]),
                 ";".join(str(v) for v in s["rank_bytes_sent"]), f"{r['error_masked']:.6g}"]))
 PY
@@ -128,12 +133,18 @@ PY
   # of log2(P) steps at an assumed 1.25 GB/s (10 Gb Ethernet) with 50 us per message, 2 messages
   # per F-step round (reduce, broadcast) and 7 rounds per pass.
   /usr/bin/python3 - "$csv" <<'PY'
-import csv, math, sys
-rows = {int(r["ranks"]): r for r in csv.DictReader(open(sys.argv[1]))}
-one, two, eight = rows[1], rows[2], rows[8]
+import csv, math, statistics, sys
+table = list(csv.DictReader(open(sys.argv[1])))
+rows = {int(r["ranks"]): r for r in table}  # the last run of each rank count
+one, eight = rows[1], rows[8]
 compute_1 = float(one["rank_compute_seconds"]) / int(one["passes"])
-print(f"strong scaling on this machine: 1 rank {float(one['seconds']):.1f} s, 2 ranks "
-      f"{float(two['seconds']):.1f} s: {float(one['seconds']) / float(two['seconds']):.2f}x")
+speedups = []
+for run in sorted({r["run"] for r in table if r["ranks"] == "2"}, key=int):
+    pair = {r["ranks"]: float(r["seconds"]) for r in table if r["run"] == run}
+    speedups.append(pair["1"] / pair["2"])
+    print(f"strong scaling on this machine, run {run}: 1 rank {pair['1']:.1f} s, 2 ranks "
+          f"{pair['2']:.1f} s: {speedups[-1]:.2f}x")
+print(f"median over {len(speedups)} runs: {statistics.median(speedups):.2f}x")
 sent_8 = max(int(v) for v in eight["rank_bytes_sent"].split(";")[1:]) / int(eight["passes"])
 for p in (8, 64):
     messages = 7 * 2 * math.log2(p)

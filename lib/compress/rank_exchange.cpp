@@ -3,6 +3,7 @@
 // architecture), compressed fields as container bytes (lossless at float32).
 #include "compress/rank_exchange.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <relume/container.hpp>
 
@@ -73,6 +74,42 @@ CompressedField take_field(ByteReader& in, const std::string& where) {
 }
 
 }  // namespace
+
+void move_scratch_rows(Ranks& ranks, const ScratchRows& from, const std::vector<std::uint64_t>& held,
+                       const std::vector<std::uint64_t>& wanted, std::size_t block_rows,
+                       ScratchRows& to) {
+  const std::size_t size = std::size_t(ranks.size()), own = std::size_t(ranks.rank());
+  // Round k moves every rank's wanted rows [wanted + k * block_rows, ... + block_rows).
+  std::uint64_t rounds = 0;
+  for (std::size_t r = 0; r < size; ++r)
+    rounds = std::max<std::uint64_t>(rounds, (wanted[r + 1] - wanted[r] + block_rows - 1) / block_rows);
+  for (std::uint64_t round = 0; round < rounds; ++round) {
+    std::vector<std::string> messages(size);
+    for (std::size_t r = 0; r < size; ++r) {
+      const std::uint64_t begin = std::min(wanted[r] + round * block_rows, wanted[r + 1]);
+      const std::uint64_t end = std::min(begin + block_rows, wanted[r + 1]);
+      const std::uint64_t first = std::max(begin, held[own]), last = std::min(end, held[own + 1]);
+      ByteWriter out;
+      if (first < last) {
+        const ScratchBlock block =
+            from.read_block(std::size_t(first - held[own]), std::size_t(last - first));
+        put_array(out, block.halves.data(), block.halves.size());
+        put_array(out, block.norms.data(), block.norms.size());
+      }
+      messages[r] = out.take();
+    }
+    // Each rank's window comes from consecutive ranks in rank order: stacked, they are in order.
+    const std::vector<std::string> received = ranks.exchange(std::move(messages));
+    for (std::size_t r = 0; r < size; ++r) {
+      if (received[r].empty()) continue;
+      ByteReader in(received[r], "the scratch rows of rank " + std::to_string(r));
+      ScratchBlock block;
+      block.halves = take_array<std::uint16_t>(in);
+      block.norms = take_array<float>(in);
+      to.append_block(block);
+    }
+  }
+}
 
 WorkingRows gather_sample(Ranks& ranks, const WorkingRows& local) {
   if (ranks.size() == 1) return local;
@@ -187,20 +224,22 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
   return parts;
 }
 
-CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole, int height) {
-  const RankShare own = rank_share(ranks, height);
-  if (ranks.size() == 1) return compressed_rows(whole, own.first, own.end - own.first);
-  std::vector<std::string> bands;
+CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole,
+                              const std::vector<int>& bands) {
+  const auto rows_of = [&](int r) {
+    const int first = bands.at(std::size_t(r));
+    return compressed_rows(whole, first, bands.at(std::size_t(r) + 1) - first);
+  };
+  if (ranks.size() == 1) return rows_of(0);
+  std::vector<std::string> parts;
   if (ranks.root()) {
     for (int r = 0; r < ranks.size(); ++r) {
-      const RankShare share = rank_share(ranks, height, r);
       ByteWriter out;
-      put_field(out, compressed_rows(whole, share.first, share.end - share.first),
-                "cannot send the band of rank " + std::to_string(r));
-      bands.push_back(out.take());
+      put_field(out, rows_of(r), "cannot send the band of rank " + std::to_string(r));
+      parts.push_back(out.take());
     }
   }
-  const std::string band = ranks.scatter_from_root(std::move(bands));
+  const std::string band = ranks.scatter_from_root(std::move(parts));
   ByteReader in(band, "the band of rank " + std::to_string(ranks.rank()));
   return take_field(in, "the band of rank " + std::to_string(ranks.rank()));
 }

@@ -1,5 +1,6 @@
 // What the ranks of a distributed streamed compression (core/ranks.hpp) exchange, packed into
-// bytes: every rank's share of the clustering sample (gathered at the root, which clusters it),
+// bytes: scratch rows (moved between ranks so that their bands hold even work), every rank's
+// share of the clustering sample (gathered at the root, which clusters it),
 // the bases (broadcast by the root after every solve), the F-step's sums (added up at the root),
 // every rank's part of the compressed field (gathered at the root, which writes the file), then
 // every rank's band of the stored field (sent by the root) and the errors each rank measured on
@@ -14,6 +15,7 @@
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_model.hpp"
 #include "compress/field_errors.hpp"
+#include "compress/scratch_rows.hpp"
 #include "core/ranks.hpp"
 
 namespace relume {
@@ -27,6 +29,14 @@ void broadcast_bases(Ranks& ranks, ClusterModel& model);
 
 // Adds every rank's round sums of every cluster into the root's `fits`.
 void sum_fits_to_root(Ranks& ranks, std::vector<BasisIrlsFit>& fits);
+
+// Moves scratch rows between the ranks (all call it), numbered globally as the ranks' stores
+// stacked in rank order: rank r holds rows [held[r], held[r + 1]) in `from` and gets rows
+// [wanted[r], wanted[r + 1]) appended to `to`, in order, at most `block_rows` of them at a time in
+// memory.
+void move_scratch_rows(Ranks& ranks, const ScratchRows& from, const std::vector<std::uint64_t>& held,
+                       const std::vector<std::uint64_t>& wanted, std::size_t block_rows,
+                       ScratchRows& to);
 
 // One rank's part of the build pass: its rows of the compressed field (float32) and what the
 // root needs with them.
@@ -43,9 +53,10 @@ struct BuiltPart {
 // Every rank's part at the root, in rank order (the root's own first); empty elsewhere.
 std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local);
 
-// This rank's pixel rows [band.first, band.end) of the root's `whole` field (ignored elsewhere),
-// as a compressed field of their own (compressed_rows).
-CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole, int height);
+// This rank's pixel rows [bands[rank], bands[rank + 1]) of the root's `whole` field (ignored
+// elsewhere), as a compressed field of their own (compressed_rows).
+CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole,
+                              const std::vector<int>& bands);
 
 // Every rank's errors of its band (its first function `first_function` of the field) merged at
 // the root in rank order, as measuring the bands stacked gives (merge_field_errors); this rank's

@@ -38,16 +38,26 @@ ScratchRows::~ScratchRows() {
 }
 
 void ScratchRows::append(const WorkingRows& rows) {
-  const std::size_t values = rows.rows() * std::size_t(lights_);
-  std::vector<std::uint16_t> halves(values);
+  ScratchBlock block;
+  block.halves.resize(rows.rows() * std::size_t(lights_));
   const float* data = rows.values.data();
   parallel_for(rows.rows(), threads_, [&](std::size_t r, unsigned) {
     for (std::size_t v = r * std::size_t(lights_); v < (r + 1) * std::size_t(lights_); ++v)
-      halves[v] = float_to_half_bits(data[v]);
+      block.halves[v] = float_to_half_bits(data[v]);
   });
+  block.norms = rows.norms;
+  append_block(block);
+}
+
+void ScratchRows::append_block(const ScratchBlock& block) {
+  if (block.halves.size() != block.norms.size() * std::size_t(lights_))
+    throw Error("scratch file " + path_.string() + ": a block of " +
+                std::to_string(block.halves.size()) + " values for " +
+                std::to_string(block.norms.size()) + " rows of " + std::to_string(lights_) +
+                " lights");
   off_t offset = off_t(bytes());
-  const char* data_bytes = reinterpret_cast<const char*>(halves.data());
-  std::size_t left = values * sizeof(std::uint16_t);
+  const char* data_bytes = reinterpret_cast<const char*>(block.halves.data());
+  std::size_t left = block.halves.size() * sizeof(std::uint16_t);
   while (left > 0) {
     const ssize_t written = ::pwrite(fd_, data_bytes, left, offset);
     if (written < 0 && errno == EINTR) continue;
@@ -58,16 +68,17 @@ void ScratchRows::append(const WorkingRows& rows) {
     left -= std::size_t(written);
     offset += written;
   }
-  norms_.insert(norms_.end(), rows.norms.begin(), rows.norms.end());
+  norms_.insert(norms_.end(), block.norms.begin(), block.norms.end());
 }
 
-WorkingRows ScratchRows::read(std::size_t first, std::size_t count) const {
+ScratchBlock ScratchRows::read_block(std::size_t first, std::size_t count) const {
   if (first + count > rows())
     throw Error("scratch file " + path_.string() + ": rows " + std::to_string(first) + " to " +
                 std::to_string(first + count) + " are beyond its " + std::to_string(rows()));
-  std::vector<std::uint16_t> halves(count * std::size_t(lights_));
-  char* data_bytes = reinterpret_cast<char*>(halves.data());
-  std::size_t left = halves.size() * sizeof(std::uint16_t);
+  ScratchBlock block;
+  block.halves.resize(count * std::size_t(lights_));
+  char* data_bytes = reinterpret_cast<char*>(block.halves.data());
+  std::size_t left = block.halves.size() * sizeof(std::uint16_t);
   off_t offset = off_t(first * std::size_t(lights_) * sizeof(std::uint16_t));
   while (left > 0) {
     const ssize_t got = ::pread(fd_, data_bytes, left, offset);
@@ -79,15 +90,21 @@ WorkingRows ScratchRows::read(std::size_t first, std::size_t count) const {
     left -= std::size_t(got);
     offset += got;
   }
+  block.norms.assign(norms_.begin() + std::ptrdiff_t(first),
+                     norms_.begin() + std::ptrdiff_t(first + count));
+  return block;
+}
+
+WorkingRows ScratchRows::read(std::size_t first, std::size_t count) const {
+  ScratchBlock block = read_block(first, count);
   WorkingRows rows;
   rows.values.resize(Eigen::Index(count), lights_);
-  rows.norms.assign(norms_.begin() + std::ptrdiff_t(first),
-                    norms_.begin() + std::ptrdiff_t(first + count));
+  rows.norms = std::move(block.norms);
   parallel_for(count, threads_, [&](std::size_t r, unsigned) {
     float* out = rows.values.data() + r * std::size_t(lights_);
     double energy = 0;
     for (int i = 0; i < lights_; ++i) {
-      out[i] = half_bits_to_float(halves[r * std::size_t(lights_) + std::size_t(i)]);
+      out[i] = half_bits_to_float(block.halves[r * std::size_t(lights_) + std::size_t(i)]);
       energy += double(out[i]) * out[i];
     }
     const float scale = energy > 0 ? float(1.0 / std::sqrt(energy)) : 1.0f;

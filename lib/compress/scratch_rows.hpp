@@ -17,6 +17,13 @@
 
 namespace relume {
 
+// Rows as a scratch file holds them: float16 values (bit patterns) and their norms, for moving
+// rows from one store to another unchanged (compress/rank_exchange.hpp).
+struct ScratchBlock {
+  std::vector<std::uint16_t> halves;
+  std::vector<float> norms;
+};
+
 class ScratchRows {
  public:
   // Creates the file `.tmp-<pid>-<name>` in `folder` (created if missing); values are converted
@@ -32,8 +39,12 @@ class ScratchRows {
   void append(const WorkingRows& rows);
   // Rows [first, first + count) as float32, unit norm again after the rounding.
   WorkingRows read(std::size_t first, std::size_t count) const;
+  // Rows [first, first + count) as stored, and appending such rows.
+  ScratchBlock read_block(std::size_t first, std::size_t count) const;
+  void append_block(const ScratchBlock& block);
 
   std::size_t rows() const { return norms_.size(); }
+  int lights() const { return lights_; }
   std::uint64_t bytes() const { return std::uint64_t(rows()) * std::uint64_t(lights_) * 2; }
   const std::filesystem::path& path() const { return path_; }
 

@@ -3,7 +3,9 @@
 #include "compress/streamed_compression.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
+#include <thread>
 #include <relume/error.hpp>
 
 #include "compress/cluster_basis.hpp"
@@ -39,11 +41,10 @@ AssignmentResult assign_to_bases(const WorkingRows& rows, const ClusterModel& ba
 
 // What pass 1 keeps of this rank's rows besides the scratch rows.
 struct ReadResult {
-  std::size_t stored_rows = 0;
+  std::vector<std::uint64_t> stored_per_row;  // stored functions of every pixel row read
   std::size_t dark_pixels = 0;
   std::int64_t outside_mask = 0;  // functions
   std::vector<double> dark_sum;   // channels x lights, in the rows' basis
-  WorkingRows sample;
 };
 
 // Pixel rows [begin_row, end_row): this rank's share of the field.
@@ -51,14 +52,10 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
                        const CompressionPlan& plan, float noise_floor, int begin_row, int end_row,
                        ScratchRows& scratch) {
   const ReflectanceField& header = reader.header();
-  const int lights = header.lights();
-  const bool haar = options.transform == BasisTransform::haar;
-  const std::uint64_t functions = functions_inside_mask(header);
-  const std::size_t stride = std::size_t(std::max<std::uint64_t>(
-      1, (functions + plan.sample_rows - 1) / std::max<std::size_t>(plan.sample_rows, 1)));
+  const std::size_t row_functions = std::size_t(header.width) * std::size_t(header.channels);
   ReadResult result;
-  result.dark_sum.assign(std::size_t(header.channels) * lights, 0.0);
-  std::vector<float> sample_values, sample_norms;
+  result.stored_per_row.assign(std::size_t(end_row - begin_row), 0);
+  result.dark_sum.assign(std::size_t(header.channels) * header.lights(), 0.0);
   ProgressReporter progress("compress: reading strips", std::uint64_t(end_row - begin_row),
                             options.clustering.quiet);
   reader.rewind();
@@ -66,14 +63,10 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
     throw_if_interrupted();
     const int rows = std::min(plan.strip_rows, end_row - y);
     const ReflectanceField strip = reader.read(y, rows);
-    const PreparedRows prepared =
-        prepare_rows(strip, haar, noise_floor, options.clustering.threads);
-    for (std::size_t r = 0; r < prepared.functions.size(); ++r, ++result.stored_rows) {
-      if (result.stored_rows % stride != 0) continue;
-      const float* row = prepared.rows.row(r);
-      sample_values.insert(sample_values.end(), row, row + lights);
-      sample_norms.push_back(prepared.rows.norms[r]);
-    }
+    const PreparedRows prepared = prepare_rows(strip, options.transform == BasisTransform::haar,
+                                               noise_floor, options.clustering.threads);
+    for (const std::uint32_t function : prepared.functions)
+      ++result.stored_per_row[std::size_t(y - begin_row) + function / row_functions];
     result.dark_pixels += prepared.dark_pixels.size();
     for (std::size_t v = 0; v < prepared.dark.size(); ++v)
       result.dark_sum[v] += double(prepared.dark[v]) * double(prepared.dark_pixels.size());
@@ -83,10 +76,24 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
     progress.advance(std::uint64_t(rows));
   }
   progress.finish();
-  result.sample.values =
-      Eigen::Map<RowMatrixF>(sample_values.data(), Eigen::Index(sample_norms.size()), lights);
-  result.sample.norms = std::move(sample_norms);
   return result;
+}
+
+// Every `stride`-th row of the field's stored functions (a spatially stratified sample), as the
+// scratch rows hold them: this rank's rows are the field's from `first_row` on.
+WorkingRows sample_rows(const ScratchRows& scratch, std::uint64_t first_row, std::size_t stride) {
+  std::vector<float> values, norms;
+  for (std::size_t r = std::size_t((stride - first_row % stride) % stride); r < scratch.rows();
+       r += stride) {
+    const WorkingRows row = scratch.read(r, 1);
+    values.insert(values.end(), row.values.data(), row.values.data() + row.lights());
+    norms.push_back(row.norms[0]);
+  }
+  WorkingRows sample;
+  sample.values = Eigen::Map<RowMatrixF>(values.data(), Eigen::Index(norms.size()),
+                                         Eigen::Index(scratch.lights()));
+  sample.norms = std::move(norms);
+  return sample;
 }
 
 // One refinement pass over this rank's scratch rows, as an in-memory iteration: every row
@@ -261,24 +268,32 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : header.noise_floor;
   stats.residual_threshold =
       options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
-  // This rank's pixel rows.
-  const RankShare band = rank_share(ranks, header.height);
-  const int begin_row = band.first, end_row = band.end;
-
-  // 1. Read: scratch rows, the sample, the dark model's sums; counts over all ranks.
+  // 1. Read this rank's even share of the pixel rows: scratch rows, the dark model's sums, every
+  // row's stored functions; counts over all ranks.
   auto start = Clock::now();
-  ScratchRows scratch(plan.scratch_folder, scratch_name, lights, clustering.threads);
-  ReadResult read =
-      read_strips(reader, options, plan, stats.noise_floor, begin_row, end_row, scratch);
-  std::vector<double> sums = read.dark_sum;
-  sums.insert(sums.end(), {double(read.stored_rows), double(read.dark_pixels),
-                           double(read.outside_mask), double(scratch.bytes())});
-  ranks.sum_everywhere(sums.data(), sums.size());
+  const RankShare read_band = rank_share(ranks, header.height);
+  auto scratch = std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name, lights,
+                                               clustering.threads);
+  const ReadResult read = read_strips(reader, options, plan, stats.noise_floor, read_band.first,
+                                      read_band.end, *scratch);
   const std::size_t channel_lights = read.dark_sum.size();
-  stats.stored_rows = std::size_t(sums[channel_lights]);
-  stats.dark_pixels = std::size_t(sums[channel_lights + 1]);
-  stats.outside_mask = std::int64_t(sums[channel_lights + 2]);
-  trace.scratch_bytes = std::uint64_t(sums[channel_lights + 3]);
+  std::vector<double> sums = read.dark_sum;
+  sums.insert(sums.end(), {double(read.dark_pixels), double(read.outside_mask),
+                           double(scratch->bytes())});
+  sums.resize(channel_lights + 3 + std::size_t(header.height), 0.0);
+  std::copy(read.stored_per_row.begin(), read.stored_per_row.end(),
+            sums.begin() + std::ptrdiff_t(channel_lights + 3 + std::size_t(read_band.first)));
+  ranks.sum_everywhere(sums.data(), sums.size());
+  stats.dark_pixels = std::size_t(sums[channel_lights]);
+  stats.outside_mask = std::int64_t(sums[channel_lights + 1]);
+  trace.scratch_bytes = std::uint64_t(sums[channel_lights + 2]);
+  // The field's stored functions before every pixel row (row_start[y]).
+  std::vector<std::uint64_t> stored_per_row, row_start{0};
+  for (int y = 0; y < header.height; ++y) {
+    stored_per_row.push_back(std::uint64_t(sums[channel_lights + 3 + std::size_t(y)]));
+    row_start.push_back(row_start.back() + stored_per_row.back());
+  }
+  stats.stored_rows = std::size_t(row_start.back());
   std::vector<float> dark;
   if (stats.dark_pixels > 0)
     for (std::size_t v = 0; v < channel_lights; ++v)
@@ -290,15 +305,51 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.clusters_asked = clustering.clusters;
   trace.read_seconds = stats.prepare_seconds = seconds_since(start);
 
-  // 2. Fit on the sample, gathered at the root; its bases go to every rank.
+  // The later passes' bands hold as many stored functions as whole pixel rows allow (dark and
+  // masked pixels store none): the ranks move their scratch rows to match.
+  const std::size_t block_rows =
+      std::max<std::size_t>(1, std::size_t(plan.strip_rows) * header.width * header.channels);
+  StreamedCompression result;
+  result.bands = weighted_shares(stored_per_row, ranks.size());
+  const int begin_row = result.bands[std::size_t(ranks.rank())];
+  const int end_row = result.bands[std::size_t(ranks.rank()) + 1];
+  for (int r = 0; r < ranks.size(); ++r)
+    trace.rank_stored_rows.push_back(row_start[std::size_t(result.bands[std::size_t(r) + 1])] -
+                                     row_start[std::size_t(result.bands[std::size_t(r)])]);
+  if (ranks.size() > 1) {
+    std::vector<std::uint64_t> held, wanted;
+    for (int r = 0; r <= ranks.size(); ++r) {
+      held.push_back(row_start[std::size_t(r < ranks.size() ? rank_share(ranks, header.height, r).first
+                                                            : header.height)]);
+      wanted.push_back(row_start[std::size_t(result.bands[std::size_t(r)])]);
+    }
+    auto balanced = std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name + ".balanced",
+                                                  lights, clustering.threads);
+    move_scratch_rows(ranks, *scratch, held, wanted, block_rows, *balanced);
+    scratch = std::move(balanced);
+  }
+
+  // 2. Fit on the sample (the same rows whatever the ranks), gathered at the root; its bases go
+  // to every rank.
   start = Clock::now();
   ClusterModel bases;
   {
-    const WorkingRows sample = gather_sample(ranks, read.sample);
-    read.sample = {};
+    const std::size_t stride = std::size_t(std::max<std::uint64_t>(
+        1, (functions_inside_mask(header) + plan.sample_rows - 1) /
+               std::max<std::size_t>(plan.sample_rows, 1)));
+    const WorkingRows sample =
+        gather_sample(ranks, sample_rows(*scratch, row_start[std::size_t(begin_row)], stride));
     trace.sample_rows = sample.rows();
     if (ranks.root()) {
-      ClusterModel model = cluster_prepared_rows(sample, lights, options, stats, hook, resume);
+      // The other ranks on this machine wait for the bases: their threads cluster the sample too
+      // (the model does not depend on the thread count).
+      CompressionOptions sample_options = options;
+      if (clustering.threads > 0)
+        sample_options.clustering.threads =
+            std::min(clustering.threads * unsigned(ranks.local_size()),
+                     std::max(clustering.threads, std::thread::hardware_concurrency()));
+      ClusterModel model =
+          cluster_prepared_rows(sample, lights, sample_options, stats, hook, resume);
       bases.terms = model.terms;
       bases.lights = model.lights;
       bases.clusters = model.clusters;
@@ -310,14 +361,12 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 
   // 3. Refine over the scratch rows.
   const auto refine_start = Clock::now();
-  const std::size_t block_rows =
-      std::max<std::size_t>(1, std::size_t(plan.strip_rows) * header.width * header.channels);
   std::vector<std::int32_t> assignment;
   RowMatrixF weights;
   // Like the in-memory iterations, the passes stop once few rows change cluster.
   for (int pass = 1; bases.clusters > 0 && pass <= options.refine_iterations; ++pass) {
     trace.passes.push_back(
-        refine_pass(ranks, scratch, block_rows, clustering, bases, assignment, weights, pass));
+        refine_pass(ranks, *scratch, block_rows, clustering, bases, assignment, weights, pass));
     if (pass > 1 && double(trace.passes.back().changed) <=
                         clustering.settle_fraction * double(stats.stored_rows))
       break;
@@ -331,13 +380,12 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.residual_entries = options.residual.entries_for(lights);
   std::vector<BuiltPart> parts =
       gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
-                                     scratch.rows(), begin_row, end_row));
+                                     scratch->rows(), begin_row, end_row));
   // Every rank's time outside the exchanges, and bytes sent, at the root.
   std::vector<double> rank_figures(2 * std::size_t(ranks.size()), 0.0);
   rank_figures[2 * std::size_t(ranks.rank())] = seconds_since(run_start) - ranks.exchange_seconds();
   rank_figures[2 * std::size_t(ranks.rank()) + 1] = double(ranks.bytes_sent());
   ranks.sum_to_root(rank_figures.data(), rank_figures.size());
-  StreamedCompression result;
   if (!ranks.root()) return result;
   for (int r = 0; r < ranks.size(); ++r) {
     trace.rank_compute_seconds.push_back(rank_figures[2 * std::size_t(r)]);
@@ -381,16 +429,17 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   return result;
 }
 
-FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
+FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
+                                    int strip_rows,
                                     const CompressedField& stored, int residual_entries,
                                     double white, const std::vector<std::uint8_t>& psnr_mask,
                                     unsigned threads, bool quiet) {
   Ranks& ranks = process_ranks();
   const ReflectanceField& header = reader.header();
-  const RankShare band = rank_share(ranks, header.height);
+  const RankShare band{bands.at(std::size_t(ranks.rank())), bands.at(std::size_t(ranks.rank()) + 1)};
   // One process measures `stored` itself; several get their bands from the root.
   std::optional<CompressedField> received;
-  if (ranks.size() > 1) received = scatter_bands(ranks, stored, header.height);
+  if (ranks.size() > 1) received = scatter_bands(ranks, stored, bands);
   const CompressedField& stored_band = received ? *received : stored;
   const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
   FieldErrors total;

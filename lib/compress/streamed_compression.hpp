@@ -1,10 +1,9 @@
 // Compression of a field larger than memory (the streamed plan): the field is read strip by
 // strip (field/field_strips.hpp) and never held whole.
 //  1. Read: every strip's functions are prepared (compress/cluster_model.hpp) and their unit rows
-//     go to a float16 scratch file (compress/scratch_rows.hpp); every s-th row, in scan order
-//     (a spatially stratified sample), is kept in memory.
-//  2. Fit on the sample: the clusters are found on the sample as on a whole field, with its
-//     checkpoints and --resume.
+//     go to a float16 scratch file (compress/scratch_rows.hpp).
+//  2. Fit on a sample: every s-th scratch row in scan order (a spatially stratified sample) is
+//     clustered as a whole field would be, with its checkpoints and --resume.
 //  3. Refine: each pass streams the scratch rows block by block, assigns them to the clusters
 //     (their W refitted) and sums every cluster's IRLS normal equations for the F-step
 //     (compress/cluster_basis.hpp), which add across blocks; the new bases follow each pass.
@@ -40,7 +39,9 @@ struct StreamedTrace {
   int strips = 0;
   double read_seconds = 0, sample_clustering_seconds = 0, refine_seconds = 0, build_seconds = 0;
   std::vector<StreamedPass> passes;
-  // Per rank (core/ranks.hpp): seconds outside the exchanges between ranks, and bytes sent.
+  // Per rank (core/ranks.hpp): stored functions of its band, seconds outside the exchanges
+  // between ranks, and bytes sent.
+  std::vector<std::uint64_t> rank_stored_rows;
   std::vector<double> rank_compute_seconds;
   std::vector<std::uint64_t> rank_bytes_sent;
 };
@@ -54,14 +55,19 @@ struct StreamedCompression {
   // what the quantization is chosen against (store_with_precision_on_strips).
   ReflectanceField original_sample;
   std::vector<std::pair<int, int>> sample_rows;
+  // Rank r's pixel rows [bands[r], bands[r + 1]) of the build pass and the error measure (every
+  // rank's result has them).
+  std::vector<int> bands;
 };
 
 // Compresses the field `reader` reads with `plan` (streamed); the scratch file is
 // `.tmp-<pid>-<scratch_name>` in the plan's folder. `hook` and `resume` apply to the sample's
 // clustering (checkpoints of the sample's model). `stats` is filled as compress_field fills it.
-// With several ranks (core/ranks.hpp: mpirun), each reads and refines its own band of pixel rows;
-// the root clusters the gathered sample, solves every F-step from the summed normal equations and
-// receives the parts: only the root's result holds the field (the others' is empty).
+// With several ranks (core/ranks.hpp: mpirun), each reads an even share of the pixel rows, then
+// the ranks move their scratch rows so that each refines and builds a band of rows with as many
+// stored functions as the others; the root clusters the gathered sample, solves every F-step from
+// the summed normal equations and receives the parts: only the root's result holds the field
+// (the others' has only the bands).
 StreamedCompression compress_streamed(FieldStripReader& reader, const CompressionOptions& options,
                                       const CompressionPlan& plan, CompressionStats& stats,
                                       StreamedTrace& trace, const std::string& scratch_name,
@@ -69,10 +75,12 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
                                       const ClusteringResume* resume = nullptr);
 
 // The report's errors of `stored` against the field `reader` reads, strip by strip
-// (field_errors.hpp). With several ranks (core/ranks.hpp) every rank calls it: the root, which
-// holds `stored` (ignored elsewhere), sends each rank its band of pixel rows, each measures its
-// band, and the root gets the merged errors.
-FieldErrors measure_streamed_errors(FieldStripReader& reader, int strip_rows,
+// (field_errors.hpp). With several ranks (core/ranks.hpp) every rank calls it with the bands of
+// its compression (StreamedCompression::bands): the root, which holds `stored` (ignored
+// elsewhere), sends each rank its band of pixel rows, each measures its band, and the root gets
+// the merged errors.
+FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
+                                    int strip_rows,
                                     const CompressedField& stored, int residual_entries,
                                     double white, const std::vector<std::uint8_t>& psnr_mask,
                                     unsigned threads, bool quiet);

@@ -35,6 +35,9 @@ class Ranks {
   virtual std::string scatter_from_root(std::vector<std::string> parts) {
     return std::move(parts.at(0));
   }
+  // Every rank's to[r] to rank r, all at once: from[q] is what rank q sent this one (`to` has one
+  // entry per rank; a rank's entry for itself comes back as it is).
+  virtual std::vector<std::string> exchange(std::vector<std::string> to) { return to; }
   // Bytes this rank has sent to the others so far, and the seconds it spent in the exchanges
   // (sending, receiving and waiting for the others).
   virtual std::uint64_t bytes_sent() const { return 0; }
@@ -49,6 +52,13 @@ RankShare rank_share(const Ranks& ranks, int count, int rank);
 inline RankShare rank_share(const Ranks& ranks, int count) {
   return rank_share(ranks, count, ranks.rank());
 }
+
+// `parts` consecutive shares of items weighted `weights` (for example the stored functions of
+// every pixel row), as even in weight as whole items allow: parts + 1 boundaries, from 0 to
+// weights.size(); share r is [boundaries[r], boundaries[r + 1]). Boundary r is the item boundary
+// nearest to where the weight before it is r / parts of the total; with no weight at all the
+// items are split evenly by count.
+std::vector<int> weighted_shares(const std::vector<std::uint64_t>& weights, int parts);
 
 // The ranks of this process's run: one process unless set_process_ranks installed others (the
 // command does, under mpirun).

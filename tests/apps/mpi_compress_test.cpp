@@ -6,7 +6,9 @@
 // message and leaves no output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <numeric>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
@@ -72,6 +74,16 @@ TEST_F(MpiCompress, RanksShareTheWorkAndReachTheSingleProcessQuality) {
       EXPECT_EQ(report["streamed"]["rank_bytes_sent"].size(), std::size_t(ranks));
       EXPECT_EQ(report["streamed"]["rank_compute_seconds"].size(), std::size_t(ranks));
       EXPECT_GT(report["streamed"]["rank_bytes_sent"][1].get<double>(), 0);
+      // The bands hold the same stored functions to within two pixel rows' (2 x 64 x 3), all of
+      // them together one rank's.
+      const auto shares =
+          report["streamed"]["rank_stored_functions"].get<std::vector<std::uint64_t>>();
+      ASSERT_EQ(shares.size(), std::size_t(ranks));
+      const auto [fewest, most] = std::minmax_element(shares.begin(), shares.end());
+      EXPECT_LE(*most - *fewest, 2u * 64u * 3u);
+      EXPECT_EQ(std::accumulate(shares.begin(), shares.end(), std::uint64_t(0)),
+                read_json(dir_ / "ranks1.json")["streamed"]["rank_stored_functions"][0]
+                    .get<std::uint64_t>());
     }
     if (ranks > 1) {
       // The same model as one rank's, whose errors each rank measured on its own band of rows:

@@ -202,7 +202,7 @@ TEST(CompressionPlan, StripsStaySmallUnderALargeBudget) {
                                                  << plan.strip_rows << " rows";
 }
 
-TEST(ScratchRows, RowsComeBackAtHalfPrecisionAndTheFileGoes) {
+TEST(ScratchRows, RowsComeBackAtHalfPrecisionMoveExactlyAndTheFileGoes) {
   testing::TempDir dir;
   WorkingRows rows;
   rows.values.resize(5, 7);
@@ -226,6 +226,21 @@ TEST(ScratchRows, RowsComeBackAtHalfPrecisionAndTheFileGoes) {
       for (int i = 0; i < 7; ++i) EXPECT_NEAR(back.values(r, i), rows.values(r + 1, i), 1e-3f);
     }
     EXPECT_THROW(scratch.read(8, 3), Error);
+    // Blocks move rows to another store bit for bit (as ranks move them to balance their bands).
+    ScratchRows moved(dir / "scratch", "out.relume.scratch.moved", 7);
+    moved.append_block(scratch.read_block(6, 3));
+    moved.append_block(scratch.read_block(0, 2));
+    EXPECT_EQ(moved.read_block(0, 5).halves, [&] {
+      std::vector<std::uint16_t> halves = scratch.read_block(6, 3).halves;
+      const std::vector<std::uint16_t> first = scratch.read_block(0, 2).halves;
+      halves.insert(halves.end(), first.begin(), first.end());
+      return halves;
+    }());
+    EXPECT_EQ(moved.read_block(3, 2).norms, (std::vector<float>{1, 2}));
+    ScratchBlock short_block = scratch.read_block(0, 2);
+    short_block.halves.pop_back();
+    EXPECT_THROW(moved.append_block(short_block), Error);
+    EXPECT_EQ(moved.rows(), 5u);
   }
   EXPECT_FALSE(fs::exists(file));
 }
