@@ -88,10 +88,15 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   plan.streamed = true;
   plan.scratch_folder = scratch_folder;
   plan.scratch_bytes = functions * lights * 2;
-  // Streamed it is held once, quantized in place, with room for the quantization's and the
-  // container encoder's rebuilt arrays; besides it every row's norm, function, cluster (and
-  // peak) and weights in the passes, and the clusters' normal equations, best and current bases.
-  plan.model_bytes = 2 * compressed + functions * (20 + terms * 4) +
+  // Streamed it is built in place and quantized in place, so held once, next to the container
+  // encoder's byte sections (at most three quarters of it: integers of 1 and 2 bytes where it
+  // holds 4) and every row's norm, cluster, function index (and peak). The refinement passes
+  // before it hold every row's norm, cluster and weights instead. Both with the clusters' normal
+  // equations, best and current bases.
+  const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
+  const std::uint64_t build = compressed + compressed / 4 * 3 + functions * (by_peak ? 24 : 16);
+  const std::uint64_t refine = functions * (8 + terms * 4);
+  plan.model_bytes = std::max(build, refine) +
                      clusters * lights * (terms * (terms + 1) / 2 + 3 * terms + 2) * 8;
   // Per pixel row of a strip: the strip's field, its prepared rows, the built rows and the
   // error measure's reconstruction, and every reading thread's decoded image rows.

@@ -183,6 +183,17 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
   const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
   BuiltPart part;
   part.sparse_counts.assign(std::size(sparseness_thresholds), 0.0);
+  // The band's arrays are sized once (its stored rows are known from the read pass, and a row
+  // keeps at most `cap` residual entries; pages not written are never resident): grown strip by
+  // strip they would be copied again and again, each copy a second one in memory. W is filled in
+  // place and given to the part at the end.
+  RowMatrixF weights(Eigen::Index(stored_rows), bases.terms);
+  part.field.stored_function.reserve(stored_rows);
+  part.field.cluster.reserve(stored_rows);
+  part.field.residual.row_offsets.reserve(stored_rows + 1);
+  part.field.residual.light_index.reserve(stored_rows * std::size_t(cap));
+  part.field.residual.values.reserve(stored_rows * std::size_t(cap));
+  if (by_peak) part.peaks.reserve(stored_rows);
   // The quantization's original rows: whole pixel rows, evenly spaced over the field, about as
   // many functions as it measures.
   const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
@@ -235,6 +246,8 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
     if (by_peak)
       for (const std::uint32_t p : built.stored_function)
         part.peaks.push_back(strip.values.row(p).cwiseAbs().maxCoeff());
+    weights.middleRows(Eigen::Index(row), Eigen::Index(count)) = built.weights;
+    built.weights.resize(0, bases.terms);
     row += count;
     append_compressed_rows(part.field, built);
     for (int r = (y + sample_every - 1) / sample_every * sample_every; r < y + rows;
@@ -246,6 +259,7 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
   }
   progress.finish();
   if (row != stored_rows) throw_changed(row);
+  if (part.field.height > 0) part.field.weights = std::move(weights);
   return part;
 }
 
@@ -396,8 +410,20 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   StreamedPass build;
   build.pass = int(trace.passes.size()) + 1;
   std::vector<double> sparse(std::size(sparseness_thresholds), 0.0), peak;
+  std::size_t entries = 0;
+  for (const BuiltPart& part : parts) entries += part.field.residual.values.size();
   for (BuiltPart& part : parts) {
-    append_compressed_rows(out, part.field);
+    if (out.height == 0) {
+      out = std::move(part.field);  // one rank's part is the field: no copy
+      // Room for the other ranks' parts, each freed as it is stacked.
+      out.stored_function.reserve(stats.stored_rows);
+      out.cluster.reserve(stats.stored_rows);
+      out.residual.row_offsets.reserve(stats.stored_rows + 1);
+      out.residual.light_index.reserve(entries);
+      out.residual.values.reserve(entries);
+    } else {
+      append_compressed_rows(out, part.field);
+    }
     part.field = {};
     peak.insert(peak.end(), part.peaks.begin(), part.peaks.end());
     for (std::size_t level = 0; level < sparse.size(); ++level)

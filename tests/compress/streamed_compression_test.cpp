@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <relume/error.hpp>
 
 #include "compress/field_errors.hpp"
@@ -200,6 +201,31 @@ TEST(CompressionPlan, StripsStaySmallUnderALargeBudget) {
   EXPECT_LE(strip_bytes, std::uint64_t(16) << 20);
   EXPECT_GT(strip_bytes, std::uint64_t(8) << 20) << "as tall as the cap allows: "
                                                  << plan.strip_rows << " rows";
+}
+
+// Streamed, the compressed field is built in place and quantized in place: the plan counts it
+// once, beside the container encoder's byte sections, and so plans the scale benchmark's
+// 2560 x 2560 x 253 field (10.8 million functions inside its mask) within 3 GB, which two copies
+// of it would not fit.
+TEST(CompressionPlan, CountsTheCompressedFieldOnce) {
+  ReflectanceField header;
+  header.width = 2560;
+  header.height = 2560;
+  header.channels = 3;
+  header.values.resize(0, 253);
+  header.mask.assign(std::size_t(header.pixels()), 0);
+  std::fill_n(header.mask.begin(), 3'610'000, std::uint8_t(1));
+  CompressionOptions options;  // the scale benchmark's
+  options.clustering.clusters = 64;
+  options.clustering.terms = 4;
+  options.residual.entries = 12;
+  const CompressionPlan plan =
+      plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch");
+  ASSERT_TRUE(plan.streamed);
+  const std::uint64_t compressed = std::uint64_t(3'610'000) * 3 * (4 * 4 + 12 * 8 + 8);
+  EXPECT_GE(plan.model_bytes, compressed + compressed / 4 * 3);
+  EXPECT_LT(plan.model_bytes, 2 * compressed);
+  EXPECT_GE(plan.sample_rows, 16u * 64);
 }
 
 TEST(ScratchRows, RowsComeBackAtHalfPrecisionMoveExactlyAndTheFileGoes) {
