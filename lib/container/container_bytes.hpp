@@ -26,6 +26,9 @@ class ByteWriter {
   void varint(std::uint64_t value);  // LEB128: 7 bits a byte, low bits first
   void bytes(std::string_view bytes) { data_.append(bytes); }
 
+  // Room for `count` more bytes: a large section written value by value is not copied as it grows.
+  void reserve(std::size_t count) { data_.reserve(data_.size() + count); }
+
   const std::string& data() const { return data_; }
   std::string take() { return std::move(data_); }
 

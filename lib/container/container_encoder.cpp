@@ -35,6 +35,7 @@ template <class Describe>
 std::string encode_values(const float* values, std::size_t count, ValuePrecision precision,
                           const Describe& describe, const std::string& where) {
   ByteWriter out;
+  out.reserve(count * std::size_t(value_bytes(precision)));
   for (std::size_t i = 0; i < count; ++i) {
     if (precision == ValuePrecision::float16)
       out.u16(checked_half(
@@ -109,6 +110,7 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
   for (float v : field.dark) dark.f32(v);
 
   ByteWriter clusters;
+  clusters.reserve(field.cluster.size() * std::size_t(widths.cluster_id_bytes));
   for (std::uint32_t k : field.cluster) clusters.unsigned_of_width(k, widths.cluster_id_bytes);
 
   const ValueQuantization& quantization = field.quantization;
@@ -127,6 +129,8 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
 
   const ResidualRows& e = field.residual;
   ByteWriter lengths, indices;
+  lengths.reserve(field.stored_rows() * std::size_t(widths.residual_length_bytes));
+  indices.reserve(e.light_index.size() * std::size_t(widths.light_index_bytes));
   for (std::size_t r = 0; r < field.stored_rows(); ++r)
     lengths.unsigned_of_width(e.length(r), widths.residual_length_bytes);
   for (std::uint32_t light : e.light_index)
@@ -147,8 +151,11 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
     for (std::size_t i = 0; i < integers.size(); ++i)
       if (is_stored(i))
         integers[i] = std::int32_t(std::lround(field.weights.data()[i] / quantization.weight_step));
+    const std::vector<std::uint16_t> errors = predict_weights(field, integers, stored_terms);
+    integers = {};
     ByteWriter out;
-    for (std::uint16_t error : predict_weights(field, integers, stored_terms)) out.u16(error);
+    out.reserve(errors.size() * 2);
+    for (std::uint16_t error : errors) out.u16(error);
     weights = out.take();
   } else {
     // W is row-major: stored rows x terms, each row's stored terms only.
@@ -165,6 +172,7 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
   }
   if (residual_precision == ValuePrecision::quantized) {
     ByteWriter out;
+    out.reserve(e.values.size() * 2);
     for (float v : e.values)
       out.u16(std::uint16_t(std::int16_t(std::lround(v / quantization.residual_step))));
     residual_values = out.take();

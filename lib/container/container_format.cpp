@@ -86,7 +86,7 @@ const std::vector<std::string_view>& container_section_names(std::uint32_t versi
   return version == 1 ? version1 : version2;  // version 3 has version 2's sections
 }
 
-std::string assemble_container(const std::vector<StoredSection>& sections, bool entropy_coding,
+std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
                                ContainerLayout* layout_out) {
   const std::uint32_t version = container_format_version;
   ContainerLayout layout;
@@ -94,13 +94,15 @@ std::string assemble_container(const std::vector<StoredSection>& sections, bool 
   layout.preamble_bytes = preamble_bytes(version);
   std::vector<CodedSection> coded;
   std::uint64_t offset = layout.preamble_bytes;
-  for (const StoredSection& section : sections) {
+  for (StoredSection& section : sections) {
+    const std::size_t raw_bytes = section.raw.size();
     coded.push_back(entropy_coding && section.name != "header"
                         ? code_section(section.raw, section.element_bytes)
-                        : CodedSection{section.raw, {}});
+                        : CodedSection{std::move(section.raw), {}});
+    std::string().swap(section.raw);  // frees it (assigning an empty string may keep the buffer)
     const CodedSection& c = coded.back();
-    layout.sections.push_back({std::string(section.name), offset, c.bytes.size(),
-                               section.raw.size(), crc32(c.bytes), c.coding.describe()});
+    layout.sections.push_back({std::string(section.name), offset, c.bytes.size(), raw_bytes,
+                               crc32(c.bytes), c.coding.describe()});
     offset += c.bytes.size();
   }
   layout.file_bytes = offset;

@@ -25,8 +25,9 @@ struct StoredSection {
 };
 
 // The whole file in the current version: every section coded (code_section) unless
-// `entropy_coding` is false or it is the header; `layout`, when given, receives the table.
-std::string assemble_container(const std::vector<StoredSection>& sections, bool entropy_coding,
+// `entropy_coding` is false or it is the header; `layout`, when given, receives the table. Each
+// section's raw bytes are let go once it is coded.
+std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
                                ContainerLayout* layout);
 
 // A file whose frame has been checked: its table and how each section is coded.

@@ -3,7 +3,10 @@
 
 #include <zstd.h>
 
+#include <memory>
+#include <optional>
 #include <relume/error.hpp>
+#include <string_view>
 #include <vector>
 
 namespace relume {
@@ -44,13 +47,19 @@ void set_element(std::string& bytes, std::size_t i, int element_bytes, std::uint
     bytes[i * std::size_t(element_bytes) + std::size_t(b)] = static_cast<char>(value & 0xFF);
 }
 
-// x[i] - x[i-1] modulo 2^(8 element_bytes), and its inverse.
-std::string delta(const std::string& raw, int element_bytes) {
-  std::string out = raw;
+// x[i] - x[i-1] modulo 2^(8 element_bytes), shuffled (as shuffle does) in the same pass, so that
+// a large section is copied once; undelta is the inverse of the delta.
+std::string delta_shuffle(const std::string& raw, int element_bytes) {
   const std::size_t count = raw.size() / std::size_t(element_bytes);
-  for (std::size_t i = 1; i < count; ++i)
-    set_element(out, i, element_bytes,
-                element(raw, i, element_bytes) - element(raw, i - 1, element_bytes));
+  std::string out(raw.size(), '\0');
+  std::uint64_t previous = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint64_t value = element(raw, i, element_bytes);
+    std::uint64_t difference = i == 0 ? value : value - previous;
+    previous = value;
+    for (int b = 0; b < element_bytes; ++b, difference >>= 8)
+      out[std::size_t(b) * count + i] = static_cast<char>(difference & 0xFF);
+  }
   return out;
 }
 
@@ -63,29 +72,32 @@ std::string undelta(const std::string& deltas, int element_bytes) {
   return out;
 }
 
-std::string zstd_compress(const std::string& raw) {
-  std::string out(ZSTD_compressBound(raw.size()), '\0');
+// The output buffer is left uninitialized: zstd touches only the pages it writes, so a section
+// costs its compressed size in memory, not its worst-case bound.
+std::string zstd_compress(std::string_view raw) {
+  const std::size_t bound = ZSTD_compressBound(raw.size());
+  const std::unique_ptr<char[]> out(new char[bound]);
   ZSTD_CCtx* context = ZSTD_createCCtx();
   ZSTD_CCtx_setParameter(context, ZSTD_c_compressionLevel, zstd_level);
   ZSTD_CCtx_setParameter(context, ZSTD_c_checksumFlag, 1);
-  const std::size_t size = ZSTD_compress2(context, out.data(), out.size(), raw.data(), raw.size());
+  const std::size_t size = ZSTD_compress2(context, out.get(), bound, raw.data(), raw.size());
   ZSTD_freeCCtx(context);
   if (ZSTD_isError(size))
     throw Error(std::string("zstd cannot compress: ") + ZSTD_getErrorName(size));
-  out.resize(size);
-  return out;
+  return std::string(out.get(), size);
 }
 
-std::string filtered(const std::string& raw, SectionFilter filter, int element_bytes) {
+// `raw` coded with zstd after `filter` (none: no copy of it).
+std::string zstd_filtered(const std::string& raw, SectionFilter filter, int element_bytes) {
   switch (filter) {
     case SectionFilter::none:
-      return raw;
+      break;
     case SectionFilter::shuffle:
-      return shuffle(raw, element_bytes);
+      return zstd_compress(shuffle(raw, element_bytes));
     case SectionFilter::delta_shuffle:
-      return shuffle(delta(raw, element_bytes), element_bytes);
+      return zstd_compress(delta_shuffle(raw, element_bytes));
   }
-  return raw;
+  return zstd_compress(raw);
 }
 
 bool valid_element_bytes(int bytes) { return bytes == 1 || bytes == 2 || bytes == 4 || bytes == 8; }
@@ -131,15 +143,17 @@ CodedSection code_section(const std::string& raw, int element_bytes) {
   if (!valid_element_bytes(element_bytes) || raw.size() % std::size_t(element_bytes) != 0)
     throw Error("internal: a section of " + std::to_string(raw.size()) + " bytes is not made of " +
                 std::to_string(element_bytes) + "-byte numbers");
-  CodedSection best{raw, {}};
+  // The smallest coding, raw if none is smaller; raw is copied only then.
+  std::optional<CodedSection> best;
   std::vector<SectionFilter> filters{SectionFilter::none};
   if (element_bytes > 1) filters.push_back(SectionFilter::shuffle);
   filters.push_back(SectionFilter::delta_shuffle);
   for (SectionFilter filter : filters) {
-    std::string coded = zstd_compress(filtered(raw, filter, element_bytes));
-    if (coded.size() < best.bytes.size()) best = {std::move(coded), {true, filter, element_bytes}};
+    std::string coded = zstd_filtered(raw, filter, element_bytes);
+    if (coded.size() < (best ? best->bytes.size() : raw.size()))
+      best = CodedSection{std::move(coded), {true, filter, element_bytes}};
   }
-  return best;
+  return best ? std::move(*best) : CodedSection{raw, {}};
 }
 
 void check_coded_size(std::uint64_t coded_bytes, std::uint64_t raw_bytes,
