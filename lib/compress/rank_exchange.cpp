@@ -75,14 +75,16 @@ CompressedField take_field(ByteReader& in, const std::string& where) {
 
 }  // namespace
 
-void move_scratch_rows(Ranks& ranks, const ScratchRows& from, const std::vector<std::uint64_t>& held,
+void move_scratch_rows(Ranks& ranks, const ScratchRows& from,
+                       const std::vector<std::uint64_t>& held,
                        const std::vector<std::uint64_t>& wanted, std::size_t block_rows,
                        ScratchRows& to) {
   const std::size_t size = std::size_t(ranks.size()), own = std::size_t(ranks.rank());
   // Round k moves every rank's wanted rows [wanted + k * block_rows, ... + block_rows).
   std::uint64_t rounds = 0;
   for (std::size_t r = 0; r < size; ++r)
-    rounds = std::max<std::uint64_t>(rounds, (wanted[r + 1] - wanted[r] + block_rows - 1) / block_rows);
+    rounds =
+        std::max<std::uint64_t>(rounds, (wanted[r + 1] - wanted[r] + block_rows - 1) / block_rows);
   for (std::uint64_t round = 0; round < rounds; ++round) {
     std::vector<std::string> messages(size);
     for (std::size_t r = 0; r < size; ++r) {

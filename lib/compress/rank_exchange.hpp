@@ -32,9 +32,10 @@ void sum_fits_to_root(Ranks& ranks, std::vector<BasisIrlsFit>& fits);
 
 // Moves scratch rows between the ranks (all call it), numbered globally as the ranks' stores
 // stacked in rank order: rank r holds rows [held[r], held[r + 1]) in `from` and gets rows
-// [wanted[r], wanted[r + 1]) appended to `to`, in order, at most `block_rows` of them at a time in
-// memory.
-void move_scratch_rows(Ranks& ranks, const ScratchRows& from, const std::vector<std::uint64_t>& held,
+// [wanted[r], wanted[r + 1]) appended to `to`, in order; each round brings every rank at most
+// `block_rows` rows.
+void move_scratch_rows(Ranks& ranks, const ScratchRows& from,
+                       const std::vector<std::uint64_t>& held,
                        const std::vector<std::uint64_t>& wanted, std::size_t block_rows,
                        ScratchRows& to);
 

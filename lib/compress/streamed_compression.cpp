@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
-#include <thread>
 #include <relume/error.hpp>
+#include <thread>
 
 #include "compress/cluster_basis.hpp"
 #include "compress/peak_residual_allocation.hpp"
@@ -286,14 +286,14 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   // row's stored functions; counts over all ranks.
   auto start = Clock::now();
   const RankShare read_band = rank_share(ranks, header.height);
-  auto scratch = std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name, lights,
-                                               clustering.threads);
+  auto scratch =
+      std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name, lights, clustering.threads);
   const ReadResult read = read_strips(reader, options, plan, stats.noise_floor, read_band.first,
                                       read_band.end, *scratch);
   const std::size_t channel_lights = read.dark_sum.size();
   std::vector<double> sums = read.dark_sum;
-  sums.insert(sums.end(), {double(read.dark_pixels), double(read.outside_mask),
-                           double(scratch->bytes())});
+  sums.insert(sums.end(),
+              {double(read.dark_pixels), double(read.outside_mask), double(scratch->bytes())});
   sums.resize(channel_lights + 3 + std::size_t(header.height), 0.0);
   std::copy(read.stored_per_row.begin(), read.stored_per_row.end(),
             sums.begin() + std::ptrdiff_t(channel_lights + 3 + std::size_t(read_band.first)));
@@ -333,8 +333,8 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   if (ranks.size() > 1) {
     std::vector<std::uint64_t> held, wanted;
     for (int r = 0; r <= ranks.size(); ++r) {
-      held.push_back(row_start[std::size_t(r < ranks.size() ? rank_share(ranks, header.height, r).first
-                                                            : header.height)]);
+      held.push_back(row_start[std::size_t(
+          r < ranks.size() ? rank_share(ranks, header.height, r).first : header.height)]);
       wanted.push_back(row_start[std::size_t(result.bands[std::size_t(r)])]);
     }
     auto balanced = std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name + ".balanced",
@@ -348,9 +348,9 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   start = Clock::now();
   ClusterModel bases;
   {
-    const std::size_t stride = std::size_t(std::max<std::uint64_t>(
-        1, (functions_inside_mask(header) + plan.sample_rows - 1) /
-               std::max<std::size_t>(plan.sample_rows, 1)));
+    const std::size_t stride = std::size_t(
+        std::max<std::uint64_t>(1, (functions_inside_mask(header) + plan.sample_rows - 1) /
+                                       std::max<std::size_t>(plan.sample_rows, 1)));
     const WorkingRows sample =
         gather_sample(ranks, sample_rows(*scratch, row_start[std::size_t(begin_row)], stride));
     trace.sample_rows = sample.rows();
@@ -456,13 +456,14 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 }
 
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
-                                    int strip_rows,
-                                    const CompressedField& stored, int residual_entries,
-                                    double white, const std::vector<std::uint8_t>& psnr_mask,
-                                    unsigned threads, bool quiet) {
+                                    int strip_rows, const CompressedField& stored,
+                                    int residual_entries, double white,
+                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                    bool quiet) {
   Ranks& ranks = process_ranks();
   const ReflectanceField& header = reader.header();
-  const RankShare band{bands.at(std::size_t(ranks.rank())), bands.at(std::size_t(ranks.rank()) + 1)};
+  const RankShare band{bands.at(std::size_t(ranks.rank())),
+                       bands.at(std::size_t(ranks.rank()) + 1)};
   // One process measures `stored` itself; several get their bands from the root.
   std::optional<CompressedField> received;
   if (ranks.size() > 1) received = scatter_bands(ranks, stored, bands);
@@ -480,10 +481,11 @@ FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<
     if (!psnr_mask.empty())
       strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
                         psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
-    merge_field_errors(total,
-                       measure_field_errors(strip, compressed_rows(stored_band, y - band.first, rows),
-                                            residual_entries, white, strip_mask, threads),
-                       (y - band.first) * row_functions);
+    merge_field_errors(
+        total,
+        measure_field_errors(strip, compressed_rows(stored_band, y - band.first, rows),
+                             residual_entries, white, strip_mask, threads),
+        (y - band.first) * row_functions);
     progress.advance(std::uint64_t(rows));
   }
   progress.finish();

@@ -80,9 +80,9 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 // elsewhere), sends each rank its band of pixel rows, each measures its band, and the root gets
 // the merged errors.
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
-                                    int strip_rows,
-                                    const CompressedField& stored, int residual_entries,
-                                    double white, const std::vector<std::uint8_t>& psnr_mask,
-                                    unsigned threads, bool quiet);
+                                    int strip_rows, const CompressedField& stored,
+                                    int residual_entries, double white,
+                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                    bool quiet);
 
 }  // namespace relume

@@ -30,7 +30,8 @@ std::vector<int> weighted_shares(const std::vector<std::uint64_t>& weights, int 
     while (item < count && double(reached + weights[std::size_t(item)]) <= goal)
       reached += weights[std::size_t(item++)];
     // Past the goal with the next item: take it when that lands nearer to the goal.
-    if (item < count && goal - double(reached) > double(reached + weights[std::size_t(item)]) - goal)
+    if (item < count &&
+        goal - double(reached) > double(reached + weights[std::size_t(item)]) - goal)
       reached += weights[std::size_t(item++)];
     boundaries.push_back(item);
   }

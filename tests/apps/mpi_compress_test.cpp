@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <fstream>
-#include <numeric>
 #include <nlohmann/json.hpp>
+#include <numeric>
 
 #include "core/atomic_file.hpp"
 #include "support/test_support.hpp"
@@ -93,8 +93,8 @@ TEST_F(MpiCompress, RanksShareTheWorkAndReachTheSingleProcessQuality) {
       EXPECT_TRUE(read_file(dir_ / (name + ".relume")) == read_file(dir_ / "ranks1.relume"));
       EXPECT_NEAR(report["psnr_8bit"]["whole_frame"].get<double>(),
                   one["psnr_8bit"]["whole_frame"].get<double>(), 1e-9);
-      EXPECT_NEAR(report["psnr_8bit"]["mask"].get<double>(),
-                  one["psnr_8bit"]["mask"].get<double>(), 1e-9);
+      EXPECT_NEAR(report["psnr_8bit"]["mask"].get<double>(), one["psnr_8bit"]["mask"].get<double>(),
+                  1e-9);
       EXPECT_NEAR(report["error_all"].get<double>(), one["error_all"].get<double>(), 1e-12);
       const nlohmann::json& light = report["per_light_error_masked"];
       const nlohmann::json& one_light = one["per_light_error_masked"];
