@@ -180,22 +180,29 @@ TEST_F(StreamedRun, ThePlanStaysInMemoryWhenTheFieldFitsAndRefusesWhenNothingFit
   EXPECT_NE(refusal.find("1000 bytes"), std::string::npos) << refusal;
 }
 
+// The plan for a side x side x 253 RGB field header whose first `inside` pixels are inside its
+// mask, compressed as the scale benchmark does (64 clusters, 4 terms, 12 residual entries) with
+// --memory-limit 3G.
+CompressionPlan benchmark_plan_under_3g(int side, std::size_t inside) {
+  ReflectanceField header;
+  header.width = side;
+  header.height = side;
+  header.channels = 3;
+  header.values.resize(0, 253);
+  header.mask.assign(std::size_t(header.pixels()), 0);
+  std::fill_n(header.mask.begin(), inside, std::uint8_t(1));
+  CompressionOptions options;
+  options.clustering.clusters = 64;
+  options.clustering.terms = 4;
+  options.residual.entries = 12;
+  return plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch");
+}
+
 // A roomy budget for a large field still reads it in strips of at most 16 MiB of values (the
 // passes' blocks are as large): larger arrays are mapped and faulted in afresh at every
 // allocation, which made the 1280 x 1280 x 253 passes several times slower per row.
 TEST(CompressionPlan, StripsStaySmallUnderALargeBudget) {
-  ReflectanceField header;
-  header.width = 1280;
-  header.height = 1280;
-  header.channels = 3;
-  header.values.resize(0, 253);
-  header.mask.assign(std::size_t(header.pixels()), 1);
-  CompressionOptions options;  // the scale benchmark's
-  options.clustering.clusters = 64;
-  options.clustering.terms = 4;
-  options.residual.entries = 12;
-  const CompressionPlan plan =
-      plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch");
+  const CompressionPlan plan = benchmark_plan_under_3g(1280, 1280 * 1280);
   ASSERT_TRUE(plan.streamed);
   const std::uint64_t strip_bytes = std::uint64_t(plan.strip_rows) * 1280 * 3 * 253 * 4;
   EXPECT_LE(strip_bytes, std::uint64_t(16) << 20);
@@ -208,19 +215,7 @@ TEST(CompressionPlan, StripsStaySmallUnderALargeBudget) {
 // 2560 x 2560 x 253 field (10.8 million functions inside its mask) within 3 GB, which two copies
 // of it would not fit.
 TEST(CompressionPlan, CountsTheCompressedFieldOnce) {
-  ReflectanceField header;
-  header.width = 2560;
-  header.height = 2560;
-  header.channels = 3;
-  header.values.resize(0, 253);
-  header.mask.assign(std::size_t(header.pixels()), 0);
-  std::fill_n(header.mask.begin(), 3'610'000, std::uint8_t(1));
-  CompressionOptions options;  // the scale benchmark's
-  options.clustering.clusters = 64;
-  options.clustering.terms = 4;
-  options.residual.entries = 12;
-  const CompressionPlan plan =
-      plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch");
+  const CompressionPlan plan = benchmark_plan_under_3g(2560, 3'610'000);
   ASSERT_TRUE(plan.streamed);
   const std::uint64_t compressed = std::uint64_t(3'610'000) * 3 * (4 * 4 + 12 * 8 + 8);
   EXPECT_GE(plan.model_bytes, compressed + compressed / 4 * 3);
