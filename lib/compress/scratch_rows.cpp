@@ -1,12 +1,7 @@
 // Implementation of the streamed compression's scratch store (see scratch_rows.hpp).
 #include "compress/scratch_rows.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <relume/error.hpp>
 
 #include "container/container_bytes.hpp"
@@ -17,25 +12,7 @@ namespace fs = std::filesystem;
 
 ScratchRows::ScratchRows(const fs::path& folder, const std::string& name, int lights,
                          unsigned threads)
-    : lights_(lights), threads_(threads) {
-  std::error_code error;
-  fs::create_directories(folder, error);
-  if (error)
-    throw Error("cannot create the scratch folder " + folder.string() + ": " + error.message());
-  path_ = temporary_path_for(folder / name);
-  remove_stale_temporaries(folder / name);
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd_ < 0)
-    throw Error("cannot write the scratch file " + path_.string() + ": " + std::strerror(errno));
-  registration_ =
-      std::make_unique<TemporaryPathRegistration>(path_, TemporaryPathRegistration::Kind::file);
-}
-
-ScratchRows::~ScratchRows() {
-  if (fd_ >= 0) ::close(fd_);
-  std::error_code ignored;
-  fs::remove(path_, ignored);
-}
+    : file_(DiskFile::temporary(folder, name, "scratch file")), lights_(lights), threads_(threads) {}
 
 void ScratchRows::append(const WorkingRows& rows) {
   ScratchBlock block;
@@ -51,45 +28,22 @@ void ScratchRows::append(const WorkingRows& rows) {
 
 void ScratchRows::append_block(const ScratchBlock& block) {
   if (block.halves.size() != block.norms.size() * std::size_t(lights_))
-    throw Error("scratch file " + path_.string() + ": a block of " +
+    throw Error("scratch file " + path().string() + ": a block of " +
                 std::to_string(block.halves.size()) + " values for " +
                 std::to_string(block.norms.size()) + " rows of " + std::to_string(lights_) +
                 " lights");
-  off_t offset = off_t(bytes());
-  const char* data_bytes = reinterpret_cast<const char*>(block.halves.data());
-  std::size_t left = block.halves.size() * sizeof(std::uint16_t);
-  while (left > 0) {
-    const ssize_t written = ::pwrite(fd_, data_bytes, left, offset);
-    if (written < 0 && errno == EINTR) continue;
-    if (written <= 0)
-      throw Error("cannot write the scratch file " + path_.string() + ": " +
-                  std::strerror(written < 0 ? errno : ENOSPC));
-    data_bytes += written;
-    left -= std::size_t(written);
-    offset += written;
-  }
+  file_.write_at(bytes(), block.halves.data(), block.halves.size() * sizeof(std::uint16_t));
   norms_.insert(norms_.end(), block.norms.begin(), block.norms.end());
 }
 
 ScratchBlock ScratchRows::read_block(std::size_t first, std::size_t count) const {
   if (first + count > rows())
-    throw Error("scratch file " + path_.string() + ": rows " + std::to_string(first) + " to " +
+    throw Error("scratch file " + path().string() + ": rows " + std::to_string(first) + " to " +
                 std::to_string(first + count) + " are beyond its " + std::to_string(rows()));
   ScratchBlock block;
   block.halves.resize(count * std::size_t(lights_));
-  char* data_bytes = reinterpret_cast<char*>(block.halves.data());
-  std::size_t left = block.halves.size() * sizeof(std::uint16_t);
-  off_t offset = off_t(first * std::size_t(lights_) * sizeof(std::uint16_t));
-  while (left > 0) {
-    const ssize_t got = ::pread(fd_, data_bytes, left, offset);
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0)
-      throw Error("cannot read the scratch file " + path_.string() + ": " +
-                  (got < 0 ? std::strerror(errno) : "it is shorter than written"));
-    data_bytes += got;
-    left -= std::size_t(got);
-    offset += got;
-  }
+  file_.read_at(first * std::size_t(lights_) * sizeof(std::uint16_t), block.halves.data(),
+                block.halves.size() * sizeof(std::uint16_t));
   block.norms.assign(norms_.begin() + std::ptrdiff_t(first),
                      norms_.begin() + std::ptrdiff_t(first + count));
   return block;

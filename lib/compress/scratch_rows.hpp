@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "compress/cluster_model.hpp"
-#include "core/temporary_files.hpp"
+#include "core/disk_file.hpp"
 
 namespace relume {
 
@@ -30,9 +30,6 @@ class ScratchRows {
   // by `threads` workers (0: all cores). Throws Error naming it when it cannot be written.
   ScratchRows(const std::filesystem::path& folder, const std::string& name, int lights,
               unsigned threads = 0);
-  ~ScratchRows();
-  ScratchRows(const ScratchRows&) = delete;
-  ScratchRows& operator=(const ScratchRows&) = delete;
 
   // Appends `rows` (their values rounded to float16; the norms are kept exactly, in memory).
   // Throws Error naming the file when the disk refuses the bytes.
@@ -46,15 +43,13 @@ class ScratchRows {
   std::size_t rows() const { return norms_.size(); }
   int lights() const { return lights_; }
   std::uint64_t bytes() const { return std::uint64_t(rows()) * std::uint64_t(lights_) * 2; }
-  const std::filesystem::path& path() const { return path_; }
+  const std::filesystem::path& path() const { return file_.path(); }
 
  private:
-  std::filesystem::path path_;
+  DiskFile file_;
   int lights_ = 0;
   unsigned threads_ = 0;
-  int fd_ = -1;
   std::vector<float> norms_;
-  std::unique_ptr<TemporaryPathRegistration> registration_;
 };
 
 }  // namespace relume
