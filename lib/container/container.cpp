@@ -14,11 +14,6 @@ int bytes_for_max_value(std::uint64_t max_value) {
   return max_value <= 0xFFu ? 1 : max_value <= 0xFFFFu ? 2 : 4;
 }
 
-StoredWidths stored_widths(const CompressedField& field, IndexWidth light_index) {
-  return {bytes_for_max_value(field.clusters > 0 ? field.clusters - 1 : 0),
-          bytes_for_max_value(field.residual.longest_row()), index_width_bits(light_index) / 8};
-}
-
 int value_bytes(ValuePrecision precision) { return precision == ValuePrecision::float32 ? 4 : 2; }
 
 namespace {

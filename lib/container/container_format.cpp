@@ -86,32 +86,13 @@ const std::vector<std::string_view>& container_section_names(std::uint32_t versi
   return version == 1 ? version1 : version2;  // version 3 has version 2's sections
 }
 
-std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
-                               ContainerLayout* layout_out) {
-  const std::uint32_t version = container_format_version;
-  ContainerLayout layout;
-  layout.version = version;
-  layout.preamble_bytes = preamble_bytes(version);
-  std::vector<CodedSection> coded;
-  std::uint64_t offset = layout.preamble_bytes;
-  for (StoredSection& section : sections) {
-    const std::size_t raw_bytes = section.raw.size();
-    coded.push_back(entropy_coding && section.name != "header"
-                        ? code_section(section.raw, section.element_bytes)
-                        : CodedSection{std::move(section.raw), {}});
-    std::string().swap(section.raw);  // frees it (assigning an empty string may keep the buffer)
-    const CodedSection& c = coded.back();
-    layout.sections.push_back({std::string(section.name), offset, c.bytes.size(), raw_bytes,
-                               crc32(c.bytes), c.coding.describe()});
-    offset += c.bytes.size();
-  }
-  layout.file_bytes = offset;
-
+std::string encode_preamble(const ContainerLayout& layout,
+                            const std::vector<SectionCoding>& codings) {
   ByteWriter file;
   file.bytes(container_magic);
-  file.u32(version);
-  file.u32(static_cast<std::uint32_t>(sections.size()));
-  for (std::size_t s = 0; s < sections.size(); ++s) {
+  file.u32(layout.version);
+  file.u32(static_cast<std::uint32_t>(layout.sections.size()));
+  for (std::size_t s = 0; s < layout.sections.size(); ++s) {
     std::string name = layout.sections[s].name;
     name.resize(section_name_bytes, '\0');
     file.bytes(name);
@@ -119,12 +100,41 @@ std::string assemble_container(std::vector<StoredSection> sections, bool entropy
     file.u64(layout.sections[s].bytes);
     file.u64(layout.sections[s].raw_bytes);
     file.u32(layout.sections[s].crc32);
-    file.u32(coded[s].coding.word());
+    file.u32(codings[s].word());
   }
   file.u32(crc32(file.data()));
-  for (const CodedSection& c : coded) file.bytes(c.bytes);
-  if (layout_out) *layout_out = std::move(layout);
   return file.take();
+}
+
+ContainerLayout new_container_layout() {
+  ContainerLayout layout;
+  layout.version = container_format_version;
+  layout.preamble_bytes = preamble_bytes(layout.version);
+  layout.file_bytes = layout.preamble_bytes;
+  return layout;
+}
+
+std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
+                               ContainerLayout* layout_out) {
+  ContainerLayout layout = new_container_layout();
+  std::vector<CodedSection> coded;
+  std::vector<SectionCoding> codings;
+  for (StoredSection& section : sections) {
+    const std::size_t raw_bytes = section.raw.size();
+    coded.push_back(entropy_coding && section.name != "header"
+                        ? code_section(section.raw, section.element_bytes)
+                        : CodedSection{std::move(section.raw), {}});
+    std::string().swap(section.raw);  // frees it (assigning an empty string may keep the buffer)
+    const CodedSection& c = coded.back();
+    codings.push_back(c.coding);
+    layout.sections.push_back({std::string(section.name), layout.file_bytes, c.bytes.size(),
+                               raw_bytes, crc32(c.bytes), c.coding.describe()});
+    layout.file_bytes += c.bytes.size();
+  }
+  std::string file = encode_preamble(layout, codings);
+  for (const CodedSection& c : coded) file += c.bytes;
+  if (layout_out) *layout_out = std::move(layout);
+  return file;
 }
 
 ParsedContainer parse_container(const std::string& bytes, const std::filesystem::path& path) {

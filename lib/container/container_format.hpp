@@ -30,6 +30,16 @@ struct StoredSection {
 std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
                                ContainerLayout* layout);
 
+// An empty layout of the current version: its preamble's size, no sections yet (file_bytes is
+// where the first section starts).
+ContainerLayout new_container_layout();
+
+// The preamble of a current-version file: magic, version, the table of `layout`'s sections (each
+// coded as `codings` says) and its CRC-32. A writer that streams the sections writes this last,
+// at offset 0.
+std::string encode_preamble(const ContainerLayout& layout,
+                            const std::vector<SectionCoding>& codings);
+
 // A file whose frame has been checked: its table and how each section is coded.
 struct ParsedContainer {
   ContainerLayout layout;

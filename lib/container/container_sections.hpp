@@ -18,9 +18,6 @@ struct StoredWidths {
 // Bytes of the smallest of u8 / u16 / u32 that holds values up to max_value.
 int bytes_for_max_value(std::uint64_t max_value);
 
-// The widths a field is stored with, the light index width resolved.
-StoredWidths stored_widths(const CompressedField& field, IndexWidth light_index);
-
 // 2 for float16 and quantized values (16-bit integers), 4 for float32.
 int value_bytes(ValuePrecision precision);
 

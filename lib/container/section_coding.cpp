@@ -12,10 +12,6 @@
 namespace relume {
 namespace {
 
-// zstd's level for every section: within a few percent of level 19 on containers, several times
-// faster (docs/container.md).
-constexpr int zstd_level = 12;
-
 std::string shuffle(const std::string& raw, int element_bytes) {
   const std::size_t count = raw.size() / std::size_t(element_bytes);
   std::string out(raw.size(), '\0');
@@ -78,7 +74,7 @@ std::string zstd_compress(std::string_view raw) {
   const std::size_t bound = ZSTD_compressBound(raw.size());
   const std::unique_ptr<char[]> out(new char[bound]);
   ZSTD_CCtx* context = ZSTD_createCCtx();
-  ZSTD_CCtx_setParameter(context, ZSTD_c_compressionLevel, zstd_level);
+  ZSTD_CCtx_setParameter(context, ZSTD_c_compressionLevel, section_zstd_level);
   ZSTD_CCtx_setParameter(context, ZSTD_c_checksumFlag, 1);
   const std::size_t size = ZSTD_compress2(context, out.get(), bound, raw.data(), raw.size());
   ZSTD_freeCCtx(context);
@@ -139,16 +135,20 @@ std::string SectionCoding::describe() const {
   return "zstd";
 }
 
+std::vector<SectionFilter> candidate_filters(int element_bytes) {
+  std::vector<SectionFilter> filters{SectionFilter::none};
+  if (element_bytes > 1) filters.push_back(SectionFilter::shuffle);
+  filters.push_back(SectionFilter::delta_shuffle);
+  return filters;
+}
+
 CodedSection code_section(const std::string& raw, int element_bytes) {
   if (!valid_element_bytes(element_bytes) || raw.size() % std::size_t(element_bytes) != 0)
     throw Error("internal: a section of " + std::to_string(raw.size()) + " bytes is not made of " +
                 std::to_string(element_bytes) + "-byte numbers");
   // The smallest coding, raw if none is smaller; raw is copied only then.
   std::optional<CodedSection> best;
-  std::vector<SectionFilter> filters{SectionFilter::none};
-  if (element_bytes > 1) filters.push_back(SectionFilter::shuffle);
-  filters.push_back(SectionFilter::delta_shuffle);
-  for (SectionFilter filter : filters) {
+  for (SectionFilter filter : candidate_filters(element_bytes)) {
     std::string coded = zstd_filtered(raw, filter, element_bytes);
     if (coded.size() < (best ? best->bytes.size() : raw.size()))
       best = CodedSection{std::move(coded), {true, filter, element_bytes}};

@@ -8,8 +8,13 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace relume {
+
+// zstd's level for every section: within a few percent of level 19 on containers, several times
+// faster (docs/container.md).
+inline constexpr int section_zstd_level = 12;
 
 enum class SectionFilter : std::uint8_t { none = 0, shuffle = 1, delta_shuffle = 2 };
 
@@ -30,6 +35,10 @@ struct CodedSection {
   std::string bytes;
   SectionCoding coding;
 };
+
+// The filters a section of `element_bytes`-byte numbers is tried with, in order (of equal sizes
+// the first wins): none, shuffle (numbers of several bytes), delta then shuffle.
+std::vector<SectionFilter> candidate_filters(int element_bytes);
 
 // The smallest of: raw, and zstd after each filter, for numbers of `element_bytes` bytes
 // (raw.size() must be a multiple of it).

@@ -23,7 +23,6 @@ CompressedField compressed_rows(const CompressedField& field, int first_row, int
   strip.intensities = field.intensities;
   strip.bases = field.bases;
   strip.quantization = field.quantization;
-  strip.dark = field.dark;
   strip.non_negative = field.non_negative;
   const std::size_t first_pixel = std::size_t(first_row) * field.width;
   const std::size_t end_pixel = first_pixel + std::size_t(rows) * field.width;
@@ -34,6 +33,7 @@ CompressedField compressed_rows(const CompressedField& field, int first_row, int
   const auto dark_end = std::lower_bound(dark_begin, field.dark_pixels.end(), end_pixel);
   for (auto q = dark_begin; q != dark_end; ++q)
     strip.dark_pixels.push_back(std::uint32_t(*q - first_pixel));
+  if (!strip.dark_pixels.empty()) strip.dark = field.dark;
 
   const std::size_t first_function = first_pixel * field.channels;
   const std::size_t end_function = end_pixel * field.channels;
@@ -72,6 +72,7 @@ void append_compressed_rows(CompressedField& field, const CompressedField& strip
   const std::uint32_t function_offset = pixel_offset * std::uint32_t(field.channels);
   field.mask.insert(field.mask.end(), strip.mask.begin(), strip.mask.end());
   for (const std::uint32_t q : strip.dark_pixels) field.dark_pixels.push_back(pixel_offset + q);
+  if (field.dark.empty()) field.dark = strip.dark;
   for (const std::uint32_t p : strip.stored_function)
     field.stored_function.push_back(function_offset + p);
   field.cluster.insert(field.cluster.end(), strip.cluster.begin(), strip.cluster.end());

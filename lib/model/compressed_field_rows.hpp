@@ -8,11 +8,13 @@
 namespace relume {
 
 // Pixel rows [first_row, first_row + rows) of `field` as a compressed field of their own: its
-// function p is the field's function first_row x width x channels + p; bases, dark model and
-// quantization are the field's. Throws Error for rows outside the field.
+// function p is the field's function first_row x width x channels + p; bases and quantization
+// are the field's, and so is the dark model when the strip has dark pixels (a field without dark
+// pixels has none). Throws Error for rows outside the field.
 CompressedField compressed_rows(const CompressedField& field, int first_row, int rows);
 
-// Stacks `strip` below `field`'s rows (an empty field, height 0, becomes the strip). Throws Error
+// Stacks `strip` below `field`'s rows (an empty field, height 0, becomes the strip); the first
+// strip with dark pixels brings the dark model. Throws Error
 // unless both have the same width, channels, lights, terms, clusters and transform.
 void append_compressed_rows(CompressedField& field, const CompressedField& strip);
 
