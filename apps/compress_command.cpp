@@ -23,6 +23,7 @@
 #include "compress/streamed_compression.hpp"
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
+#include "container/container_strips.hpp"
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
@@ -227,6 +228,7 @@ nlohmann::ordered_json plan_json(const CompressionPlan& plan) {
     json["model_bytes"] = plan.model_bytes;
     json["scratch_bytes_at_most"] = plan.scratch_bytes;
     json["scratch_folder"] = plan.scratch_folder.string();
+    json["compressed_on_disk"] = plan.compressed_on_disk;
   }
   return json;
 }
@@ -321,6 +323,10 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     psnr_mask = read_mask(arguments.psnr_mask, shape.width, shape.height);
 
   CompressedField compressed, stored;
+  // A streamed run whose compressed field is on disk (plan.compressed_on_disk): its strips, and
+  // how they are stored (`stored` stays empty).
+  std::unique_ptr<CompressedStripFile> strip_file;
+  std::optional<CompressedFieldStrips> stored_on_disk;
   RelativeError float32_masked;
   std::optional<QuantizationChoice> quantization;
   std::optional<StreamedTrace> streamed;
@@ -345,10 +351,16 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
       return nlohmann::ordered_json();
     }
     quantize_start = Clock::now();
-    stored = std::move(result.field);
     float32_masked = result.float32_masked;
-    quantization = store_with_precision_on_strips(result.original_sample, result.sample_rows,
-                                                  stored, precision);
+    if (result.strips) {
+      strip_file = std::move(result.strips);
+      stored_on_disk = stored_strips(result.original_sample, result.sampled, *strip_file,
+                                     precision, quantization);
+    } else {
+      stored = std::move(result.field);
+      quantization = store_with_precision_on_strips(result.original_sample, result.sample_rows,
+                                                    stored, precision);
+    }
   } else if (arguments.target_error > 0 || has_rate_target(arguments)) {
     const QuantizationBudget* asked_budget =
         precision.quantizes() ? &budget_of_quantization : nullptr;
@@ -374,14 +386,32 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
 
   const auto write_start = Clock::now();
   container.parameters_json = compression_parameters(options, stats, arguments.solver).dump();
-  write_container(output, stored, container);
+  ContainerLayout layout;
+  if (stored_on_disk) {
+    layout = write_container_strips(output, *stored_on_disk, container, plan.scratch_folder);
+  } else {
+    write_container(output, stored, container);
+    layout = describe_container(output);
+  }
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
 
   const auto error_start = Clock::now();
   CompressionRun run;
   run.threads = resolve_thread_count(threads);
-  if (plan.streamed) {
+  if (stored_on_disk) {
+    run.errors = measure_strip_errors(
+        *reader, 0, shape.height, plan.strip_rows,
+        [&](int y, int rows) {
+          const std::size_t s = std::size_t(y / plan.strip_rows);
+          CompressedField strip = stored_on_disk->strip(s);
+          if (stored_on_disk->first_rows.at(s) != y || strip.height != rows)
+            throw Error("internal: the error measure's strips are not the build's");
+          return strip;
+        },
+        stats.residual_entries, arguments.psnr_white, psnr_mask, threads,
+        options.clustering.quiet);
+  } else if (plan.streamed) {
     run.errors = measure_streamed(stored);
   } else {
     run.errors = measure_field_errors(*field, stored, stats.residual_entries, arguments.psnr_white,
@@ -390,10 +420,12 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   }
   run.input = input;
   run.output = output.string();
-  run.compressed = &stored;
+  // What the report needs of the stored field: its shape, lights and precisions.
+  const CompressedField& stored_shape = stored_on_disk ? stored_on_disk->shell : stored;
+  run.compressed = &stored_shape;
   run.options = &options;
   run.stats = &stats;
-  run.layout = describe_container(output);
+  run.layout = std::move(layout);
   run.extra_seconds = {{"load", load_seconds},
                        {"quantize", quantize_seconds},
                        {"write", write_seconds},
@@ -410,9 +442,9 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
                        container.residual == ValuePrecision::float16;
   if (rounded) {
     report["precision_cost"] = {
-        {"weights", to_string(stored_weight_precision(stored, container))},
-        {"residual_values", to_string(stored_residual_precision(stored, container))},
-        {"basis_bits", stored.quantization.basis_bits},
+        {"weights", to_string(stored_weight_precision(stored_shape, container))},
+        {"residual_values", to_string(stored_residual_precision(stored_shape, container))},
+        {"basis_bits", stored_shape.quantization.basis_bits},
         {"error_masked_stored", report["error_masked"]},
         {"error_masked_float32", float32_masked.mean}};
     if (!plan.streamed)

@@ -15,13 +15,15 @@ cd "$(dirname "$0")/.."
 
 # The CI set: every reader of untrusted bytes (containers, light files, folders and their strips,
 # .npy, .lp, encodings), the model's arithmetic, the relighting kernels' host code, the L1
-# solvers, streamed compression, and the command-line tests of early failures and interruption.
+# solvers, streamed compression (with its compressed field on disk and the container written
+# strip by strip), and the command-line tests of early failures and interruption.
 ci_tests=(
   container_test hostile_container_test field_io_test field_strips_test hostile_light_file_test
   light_file_test npy_test input_encoding_test quantization_test reconstruct_field_test
   compressed_field_rows_test haar_transform_test per_light_error_test npz_export_test
   atomic_file_test parallel_test progress_test l1_regression_test leading_subspace_test
   opencl_relighter_test environment_map_test streamed_compression_test early_failure_test
+  container_strips_test compressed_strip_file_test disk_file_test
 )
 
 scripts/install_deps.sh

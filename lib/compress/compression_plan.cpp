@@ -54,12 +54,13 @@ std::string CompressionPlan::describe() const {
     std::snprintf(line, sizeof line,
                   "plan: streamed (the field is %s as float32, in memory it would need about %s; "
                   "the budget is %s, %s): strips of %d pixel rows, a clustering sample of up to "
-                  "%zu functions, scratch of up to %s in %s, model and pass state about %s, "
+                  "%zu functions, scratch of up to %s in %s, model and pass state about %s%s, "
                   "quantization measured on %zu original functions",
                   byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
                   byte_size_text(budget).c_str(), budget_source.c_str(), strip_rows, sample_rows,
                   byte_size_text(scratch_bytes).c_str(), scratch_folder.string().c_str(),
-                  byte_size_text(model_bytes).c_str(), quantization_rows);
+                  byte_size_text(model_bytes).c_str(),
+                  compressed_on_disk ? " (the compressed field on disk)" : "", quantization_rows);
   }
   return line;
 }
@@ -90,11 +91,21 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   plan.scratch_bytes = functions * lights * 2;
   // Streamed it is built in place and quantized in place, so held once, next to the container
   // encoder's byte sections (at most three quarters of it: integers of 1 and 2 bytes where it
-  // holds 4) and every row's norm, cluster, function index (and peak). The refinement passes
-  // before it hold every row's norm, cluster and weights instead. Both with the clusters' normal
-  // equations, best and current bases.
+  // holds 4) and every row's norm, cluster, function index (and peak). On disk, the build holds
+  // every row's norm and cluster, and the writer every row's function index and the mask. The
+  // refinement passes before it hold every row's norm, cluster and weights instead. All with the
+  // clusters' normal equations, best and current bases.
   const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
-  const std::uint64_t build = compressed + compressed / 4 * 3 + functions * (by_peak ? 24 : 16);
+  const std::uint64_t build_in_memory =
+      compressed + compressed / 4 * 3 + functions * (by_peak ? 24 : 16);
+  // One process puts it on disk when holding it would take more than half of what the plan may
+  // use (the rest is for the sample and the strips). Several ranks keep it in memory (the root
+  // gathers it), and so does the peak allocation (it ranks the entries of the whole field).
+  plan.compressed_on_disk = !stream_anyway && !by_peak && build_in_memory > budget / 20 * 17 / 2;
+  const std::uint64_t build =
+      plan.compressed_on_disk ? functions * 8 + std::uint64_t(header.pixels()) : build_in_memory;
+  // On disk: the compressed strips, then the container's raw row sections and their codings.
+  if (plan.compressed_on_disk) plan.scratch_bytes += 2 * compressed;
   const std::uint64_t refine = functions * (8 + terms * 4);
   plan.model_bytes = std::max(build, refine) +
                      clusters * lights * (terms * (terms + 1) / 2 + 3 * terms + 2) * 8;

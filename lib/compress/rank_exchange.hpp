@@ -49,6 +49,10 @@ struct BuiltPart {
   RelativeError float32_masked;       // Eq. 16 of `field` over its masked functions
   ReflectanceField original_sample;   // the quantization's original pixel rows
   std::vector<std::pair<int, int>> sample_rows;
+  // One process with its strips on disk (CompressedStripFile) only, never exchanged: the
+  // residual entries built and the compressed rows of original_sample's pixel rows.
+  std::uint64_t residual_nonzeros = 0;
+  CompressedField sampled;
 };
 
 // Every rank's part at the root, in rank order (the root's own first); empty elsewhere.

@@ -5,10 +5,24 @@
 #include <relume/error.hpp>
 
 #include "container/container.hpp"
+#include "core/interruption.hpp"
 #include "model/basis_alignment.hpp"
 #include "model/compressed_field_rows.hpp"
 
 namespace relume {
+namespace {
+
+// The budget of a streamed field's quantization: without a term budget.
+QuantizationBudget streamed_quantization_budget(const StoragePrecision& precision) {
+  const QuantizationBudget budget = precision.quantization_budget();
+  if (budget.term_increase > 0)
+    throw Error(
+        "--term-budget chooses terms per cluster against the whole field, which does not fit "
+        "the memory budget here: leave it at 0, or raise --memory-limit");
+  return budget;
+}
+
+}  // namespace
 
 QuantizationBudget StoragePrecision::quantization_budget() const {
   if (!(budget > 0) || !std::isfinite(budget))
@@ -49,11 +63,7 @@ std::optional<QuantizationChoice> store_with_precision_on_strips(
     CompressedField& field, const StoragePrecision& precision) {
   std::optional<QuantizationChoice> choice;
   if (precision.quantizes()) {
-    const QuantizationBudget budget = precision.quantization_budget();
-    if (budget.term_increase > 0)
-      throw Error(
-          "--term-budget chooses terms per cluster against the whole field, which does not fit "
-          "the memory budget here: leave it at 0, or raise --memory-limit");
+    const QuantizationBudget budget = streamed_quantization_budget(precision);
     align_cluster_bases(field);
     CompressedField sampled;
     for (const auto& [first_row, rows] : strips)
@@ -64,6 +74,42 @@ std::optional<QuantizationChoice> store_with_precision_on_strips(
   }
   field = quantize_for_container(std::move(field), precision.container_options());
   return choice;
+}
+
+CompressedFieldStrips stored_strips(const ReflectanceField& sample, const CompressedField& sampled,
+                                    const CompressedStripFile& strips,
+                                    const StoragePrecision& precision,
+                                    std::optional<QuantizationChoice>& choice) {
+  CompressedFieldStrips stored;
+  stored.shell = strips.shell();
+  stored.first_rows = strips.first_rows();
+  const ContainerOptions container = precision.container_options();
+  if (!precision.quantizes()) {
+    stored.strip = [&strips, container](std::size_t s) {
+      return quantize_for_container(strips.read(s), container);
+    };
+    return stored;
+  }
+  const QuantizationBudget budget = streamed_quantization_budget(precision);
+  const BasisAlignment alignment = cluster_basis_alignment(strips.shell(), strips.cluster_sizes());
+  CompressedField aligned_sample = sampled;
+  apply_basis_alignment(alignment, aligned_sample);
+  choice = choose_quantization(sample, aligned_sample, budget);
+  for (std::size_t s = 0; s < strips.strips(); ++s) {
+    throw_if_interrupted();
+    CompressedField strip = strips.read(s);
+    apply_basis_alignment(alignment, strip);
+    choice->steps = steps_that_fit(strip, choice->steps);
+  }
+  apply_basis_alignment(alignment, stored.shell);
+  stored.shell = quantize_for_container(quantize_values(std::move(stored.shell), choice->steps),
+                                        container);
+  stored.strip = [&strips, alignment, steps = choice->steps, container](std::size_t s) {
+    CompressedField strip = strips.read(s);
+    apply_basis_alignment(alignment, strip);
+    return quantize_for_container(quantize_values(std::move(strip), steps), container);
+  };
+  return stored;
 }
 
 }  // namespace relume

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "compress/compressed_strip_file.hpp"
+#include "container/container_strips.hpp"
 #include "model/quantization.hpp"
 
 namespace relume {
@@ -42,5 +44,17 @@ std::optional<QuantizationChoice> store_with_precision(const ReflectanceField& o
 std::optional<QuantizationChoice> store_with_precision_on_strips(
     const ReflectanceField& sample, const std::vector<std::pair<int, int>>& strips,
     CompressedField& field, const StoragePrecision& precision);
+
+// The stored form of a field whose compressed strips are on disk (compress/compressed_strip_file.hpp),
+// as store_with_precision_on_strips makes it of one in memory: the bases aligned for the clusters'
+// sizes, the steps chosen against `sample` (pixel rows of the original) and `sampled` (the same
+// rows of the field as built), then widened in one pass over the strips until every value fits.
+// The result's strips are aligned and rounded as they are read (by the container writer, the
+// error measure); `strips` must outlive it. `choice` receives the quantization chosen, if any.
+// Throws Error as store_with_precision_on_strips.
+CompressedFieldStrips stored_strips(const ReflectanceField& sample, const CompressedField& sampled,
+                                    const CompressedStripFile& strips,
+                                    const StoragePrecision& precision,
+                                    std::optional<QuantizationChoice>& choice);
 
 }  // namespace relume

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "compress/cluster_basis.hpp"
+#include "compress/compressed_strip_file.hpp"
 #include "compress/peak_residual_allocation.hpp"
 #include "compress/rank_exchange.hpp"
 #include "compress/scratch_rows.hpp"
@@ -170,12 +171,14 @@ StreamedPass refine_pass(Ranks& ranks, const ScratchRows& scratch, std::size_t b
 }
 
 // The build pass over this rank's rows [begin_row, end_row): the strips read again, assigned to
-// the final bases (the last pass's clusters among the candidates) and built.
+// the final bases (the last pass's clusters among the candidates) and built, into the part or,
+// when `on_disk` is given, appended to it (the part's `sampled` then has the compressed rows of
+// the quantization's sample).
 BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options,
                      const CompressionPlan& plan, const CompressionStats& stats,
                      const ClusterModel& bases, const std::vector<float>& dark,
                      const std::vector<std::int32_t>& assignment, std::size_t stored_rows,
-                     int begin_row, int end_row) {
+                     int begin_row, int end_row, CompressedStripFile* on_disk) {
   const ReflectanceField& header = reader.header();
   const ClusteringOptions& clustering = options.clustering;
   const int lights = header.lights();
@@ -187,12 +190,13 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
   // keeps at most `cap` residual entries; pages not written are never resident): grown strip by
   // strip they would be copied again and again, each copy a second one in memory. W is filled in
   // place and given to the part at the end.
-  RowMatrixF weights(Eigen::Index(stored_rows), bases.terms);
-  part.field.stored_function.reserve(stored_rows);
-  part.field.cluster.reserve(stored_rows);
-  part.field.residual.row_offsets.reserve(stored_rows + 1);
-  part.field.residual.light_index.reserve(stored_rows * std::size_t(cap));
-  part.field.residual.values.reserve(stored_rows * std::size_t(cap));
+  const std::size_t in_memory_rows = on_disk ? 0 : stored_rows;
+  RowMatrixF weights(Eigen::Index(in_memory_rows), bases.terms);
+  part.field.stored_function.reserve(in_memory_rows);
+  part.field.cluster.reserve(in_memory_rows);
+  part.field.residual.row_offsets.reserve(in_memory_rows + 1);
+  part.field.residual.light_index.reserve(in_memory_rows * std::size_t(cap));
+  part.field.residual.values.reserve(in_memory_rows * std::size_t(cap));
   if (by_peak) part.peaks.reserve(stored_rows);
   // The quantization's original rows: whole pixel rows, evenly spaced over the field, about as
   // many functions as it measures.
@@ -246,20 +250,26 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
     if (by_peak)
       for (const std::uint32_t p : built.stored_function)
         part.peaks.push_back(strip.values.row(p).cwiseAbs().maxCoeff());
-    weights.middleRows(Eigen::Index(row), Eigen::Index(count)) = built.weights;
-    built.weights.resize(0, bases.terms);
-    row += count;
-    append_compressed_rows(part.field, built);
     for (int r = (y + sample_every - 1) / sample_every * sample_every; r < y + rows;
          r += sample_every) {
       append_field_rows(part.original_sample, strip, r - y, 1);
       part.sample_rows.emplace_back(r, 1);
+      if (on_disk) append_compressed_rows(part.sampled, compressed_rows(built, r - y, 1));
+    }
+    row += count;
+    part.residual_nonzeros += built.residual.nonzeros();
+    if (on_disk) {
+      on_disk->append(built);
+    } else {
+      weights.middleRows(Eigen::Index(row - count), Eigen::Index(count)) = built.weights;
+      built.weights.resize(0, bases.terms);
+      append_compressed_rows(part.field, built);
     }
     progress.advance(std::uint64_t(rows));
   }
   progress.finish();
   if (row != stored_rows) throw_changed(row);
-  if (part.field.height > 0) part.field.weights = std::move(weights);
+  if (part.field.height > 0 && !on_disk) part.field.weights = std::move(weights);
   return part;
 }
 
@@ -392,9 +402,15 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   // 4. Build: the strips again, assigned to the final bases; the parts gathered at the root.
   start = Clock::now();
   stats.residual_entries = options.residual.entries_for(lights);
+  if (plan.compressed_on_disk) {
+    if (ranks.size() > 1)
+      throw Error("internal: a plan with the compressed field on disk for several ranks");
+    result.strips = std::make_unique<CompressedStripFile>(plan.scratch_folder,
+                                                          scratch_name + ".compressed");
+  }
   std::vector<BuiltPart> parts =
       gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
-                                     scratch->rows(), begin_row, end_row));
+                                     scratch->rows(), begin_row, end_row, result.strips.get()));
   // Every rank's time outside the exchanges, and bytes sent, at the root.
   std::vector<double> rank_figures(2 * std::size_t(ranks.size()), 0.0);
   rank_figures[2 * std::size_t(ranks.rank())] = seconds_since(run_start) - ranks.exchange_seconds();
@@ -406,14 +422,17 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
     trace.rank_bytes_sent.push_back(std::uint64_t(rank_figures[2 * std::size_t(r) + 1]));
   }
 
-  CompressedField& out = result.field;
+  CompressedField& out = result.strips ? result.strips->shell() : result.field;
   StreamedPass build;
   build.pass = int(trace.passes.size()) + 1;
   std::vector<double> sparse(std::size(sparseness_thresholds), 0.0), peak;
   std::size_t entries = 0;
   for (const BuiltPart& part : parts) entries += part.field.residual.values.size();
   for (BuiltPart& part : parts) {
-    if (out.height == 0) {
+    if (result.strips) {
+      stats.residual_nonzeros = part.residual_nonzeros;
+      result.sampled = std::move(part.sampled);
+    } else if (out.height == 0) {
       out = std::move(part.field);  // one rank's part is the field: no copy
       // Room for the other ranks' parts, each freed as it is stacked.
       out.stored_function.reserve(stats.stored_rows);
@@ -445,14 +464,43 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   if (options.residual_allocation == ResidualAllocation::peak)
     keep_largest_relative_to_peak(out.residual, peak,
                                   std::size_t(stats.residual_entries) * out.stored_rows());
-  stats.residual_nonzeros = out.residual.nonzeros();
+  if (!result.strips) stats.residual_nonzeros = out.residual.nonzeros();
   stats.sparseness.assign(sparse.size(), 0.0);
   for (std::size_t level = 0; level < sparse.size(); ++level)
     stats.sparseness[level] =
-        out.stored_rows() == 0 ? 0.0 : sparse[level] / double(out.stored_rows());
+        stats.stored_rows == 0 ? 0.0 : sparse[level] / double(stats.stored_rows);
   stats.clusters = bases.clusters;
   stats.residual_seconds = trace.build_seconds = seconds_since(start);
   return result;
+}
+
+FieldErrors measure_strip_errors(
+    FieldStripReader& reader, int first_row, int end_row, int strip_rows,
+    const std::function<CompressedField(int first_row, int rows)>& stored_rows,
+    int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
+    unsigned threads, bool quiet) {
+  const ReflectanceField& header = reader.header();
+  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
+  FieldErrors total;
+  ProgressReporter progress("compress: measuring the error", std::uint64_t(end_row - first_row),
+                            quiet);
+  reader.rewind();
+  for (int y = first_row; y < end_row; y += strip_rows) {
+    throw_if_interrupted();
+    const int rows = std::min(strip_rows, end_row - y);
+    const ReflectanceField strip = reader.read(y, rows);
+    std::vector<std::uint8_t> strip_mask;
+    if (!psnr_mask.empty())
+      strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
+                        psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
+    merge_field_errors(total,
+                       measure_field_errors(strip, stored_rows(y, rows), residual_entries, white,
+                                            strip_mask, threads),
+                       (y - first_row) * row_functions);
+    progress.advance(std::uint64_t(rows));
+  }
+  progress.finish();
+  return total;
 }
 
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
@@ -461,35 +509,19 @@ FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<
                                     const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
                                     bool quiet) {
   Ranks& ranks = process_ranks();
-  const ReflectanceField& header = reader.header();
   const RankShare band{bands.at(std::size_t(ranks.rank())),
                        bands.at(std::size_t(ranks.rank()) + 1)};
   // One process measures `stored` itself; several get their bands from the root.
   std::optional<CompressedField> received;
   if (ranks.size() > 1) received = scatter_bands(ranks, stored, bands);
   const CompressedField& stored_band = received ? *received : stored;
-  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
-  FieldErrors total;
-  ProgressReporter progress("compress: measuring the error", std::uint64_t(band.end - band.first),
-                            quiet);
-  reader.rewind();
-  for (int y = band.first; y < band.end; y += strip_rows) {
-    throw_if_interrupted();
-    const int rows = std::min(strip_rows, band.end - y);
-    const ReflectanceField strip = reader.read(y, rows);
-    std::vector<std::uint8_t> strip_mask;
-    if (!psnr_mask.empty())
-      strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
-                        psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
-    merge_field_errors(
-        total,
-        measure_field_errors(strip, compressed_rows(stored_band, y - band.first, rows),
-                             residual_entries, white, strip_mask, threads),
-        (y - band.first) * row_functions);
-    progress.advance(std::uint64_t(rows));
-  }
-  progress.finish();
-  return gather_errors(ranks, std::move(total), band.first * row_functions);
+  FieldErrors band_errors = measure_strip_errors(
+      reader, band.first, band.end, strip_rows,
+      [&](int y, int rows) { return compressed_rows(stored_band, y - band.first, rows); },
+      residual_entries, white, psnr_mask, threads, quiet);
+  return gather_errors(ranks, std::move(band_errors),
+                       band.first * std::int64_t(reader.header().width) *
+                           reader.header().channels);
 }
 
 }  // namespace relume

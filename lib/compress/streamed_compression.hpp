@@ -8,18 +8,22 @@
 //     (their W refitted) and sums every cluster's IRLS normal equations for the F-step
 //     (compress/cluster_basis.hpp), which add across blocks; the new bases follow each pass.
 //  4. Build: the strips are read again; each is assigned to the final bases and its residual cut
-//     (build_compressed_field), and the strips' compressed fields are stacked.
+//     (build_compressed_field), and the strips' compressed fields are stacked in memory or, when
+//     the plan says so, kept on disk (compress/compressed_strip_file.hpp).
 // The memory plan (compress/compression_plan.hpp) says whether a field needs this and with what
 // strips.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "compress/clustered_factorization.hpp"
+#include "compress/compressed_strip_file.hpp"
 #include "compress/compression_plan.hpp"
 #include "compress/field_errors.hpp"
 #include "field/field_strips.hpp"
@@ -47,7 +51,11 @@ struct StreamedTrace {
 };
 
 struct StreamedCompression {
-  CompressedField field;  // float32, as compress_field returns it
+  CompressedField field;  // float32, as compress_field returns it (empty with `strips`)
+  // With the plan's compressed field on disk: its strips (float32, as built), and the compressed
+  // rows of `original_sample` (what store_with_precision_on_strips cuts out of `field`).
+  std::unique_ptr<CompressedStripFile> strips;
+  CompressedField sampled;
   // Eq. 16 of `field` over the masked functions, measured strip by strip as it was built (so
   // that no float32 copy need be kept after quantization).
   RelativeError float32_masked;
@@ -79,6 +87,15 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 // its compression (StreamedCompression::bands): the root, which holds `stored` (ignored
 // elsewhere), sends each rank its band of pixel rows, each measures its band, and the root gets
 // the merged errors.
+// The report's errors of pixel rows [first_row, end_row) of the field `reader` reads, strip by
+// strip: `stored_rows(y, rows)` gives the compressed field's pixel rows [y, y + rows), as stored.
+// This process's band only (function indices from the band's first).
+FieldErrors measure_strip_errors(
+    FieldStripReader& reader, int first_row, int end_row, int strip_rows,
+    const std::function<CompressedField(int first_row, int rows)>& stored_rows,
+    int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
+    unsigned threads, bool quiet);
+
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
                                     int strip_rows, const CompressedField& stored,
                                     int residual_entries, double white,

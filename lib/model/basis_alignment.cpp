@@ -2,6 +2,7 @@
 #include "model/basis_alignment.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -24,16 +25,20 @@ MatrixD used_rows(const CompressedField& field, int k, const std::vector<int>& a
 
 }  // namespace
 
-void align_cluster_bases(CompressedField& field) {
+BasisAlignment cluster_basis_alignment(const CompressedField& field,
+                                       const std::vector<std::size_t>& sizes) {
   const int t = field.terms, m = field.lights, K = field.clusters;
-  if (t == 0 || K == 0 || t > m) return;
-  std::vector<std::size_t> sizes(K, 0);
-  for (std::uint32_t k : field.cluster) ++sizes[k];
+  BasisAlignment alignment;
+  alignment.bases = field.bases;
+  if (t == 0 || K == 0 || t > m) return alignment;
   const std::vector<std::uint8_t> used = used_basis_rows(field);
 
   // Each cluster's used rows made orthonormal, V^T, and the weight transform U S.
-  std::vector<std::vector<int>> active(K);
-  std::vector<MatrixD> rows(K), weight_transform(K);
+  std::vector<std::vector<int>>& active = alignment.active;
+  std::vector<MatrixD>& weight_transform = alignment.weight_transform;
+  active.resize(std::size_t(K));
+  weight_transform.resize(std::size_t(K));
+  std::vector<MatrixD> rows(K);
   Eigen::Index stacked_rows = 0;
   for (int k = 0; k < K; ++k) {
     for (int j = 0; j < t; ++j)
@@ -47,7 +52,10 @@ void align_cluster_bases(CompressedField& field) {
     weight_transform[k] = svd.matrixU() * svd.singularValues().asDiagonal();
     stacked_rows += rows[k].rows();
   }
-  if (stacked_rows == 0) return;
+  if (stacked_rows == 0) {
+    alignment.active.clear();  // nothing to align: the field stays as it is
+    return alignment;
+  }
 
   // The reference: the dominant t-dimensional subspace of the clusters' rows, weighted by size.
   MatrixD stacked(stacked_rows, m);
@@ -75,23 +83,35 @@ void align_cluster_bases(CompressedField& field) {
     const MatrixD aligned = rotation * rows[k];
     // W' = W (U S) O^T, so that W' (O V^T) = W U S V^T = W F; the used rows move to the front.
     weight_transform[k] = weight_transform[k] * rotation.transpose();
-    float* f = field.bases.data() + std::size_t(k) * t * m;
+    float* f = alignment.bases.data() + std::size_t(k) * t * m;
     std::fill(f, f + std::size_t(t) * m, 0.0f);
     for (Eigen::Index q = 0; q < a; ++q)
       for (int i = 0; i < m; ++i) f[std::size_t(q) * m + i] = float(aligned(q, i));
   }
+  return alignment;
+}
+
+void apply_basis_alignment(const BasisAlignment& alignment, CompressedField& field) {
+  if (alignment.active.empty()) return;
+  field.bases = alignment.bases;
   for (std::size_t r = 0; r < field.stored_rows(); ++r) {
     const std::uint32_t k = field.cluster[r];
-    const std::vector<int>& of = active[k];
+    const std::vector<int>& of = alignment.active[k];
     Eigen::RowVectorXd w(Eigen::Index(of.size()));
     for (std::size_t q = 0; q < of.size(); ++q)
       w(Eigen::Index(q)) = field.weights(Eigen::Index(r), of[q]);
     auto row = field.weights.row(Eigen::Index(r));
     row.setZero();
     if (of.empty()) continue;
-    const Eigen::RowVectorXd aligned = w * weight_transform[k];
+    const Eigen::RowVectorXd aligned = w * alignment.weight_transform[k];
     for (Eigen::Index q = 0; q < aligned.size(); ++q) row(q) = float(aligned(q));
   }
+}
+
+void align_cluster_bases(CompressedField& field) {
+  std::vector<std::size_t> sizes(std::size_t(std::max(field.clusters, 0)), 0);
+  for (std::uint32_t k : field.cluster) ++sizes[k];
+  apply_basis_alignment(cluster_basis_alignment(field, sizes), field);
 }
 
 }  // namespace relume

@@ -9,11 +9,29 @@
 //     neighbouring pixels stay similar across cluster borders and predict each other.
 #pragma once
 
+#include <Eigen/Dense>
 #include <relume/compressed_field.hpp>
+#include <vector>
 
 namespace relume {
 
-// In place; the product W F^k of every row changes only by float rounding. Clusters whose basis
+// The aligned bases of a field and how each cluster's weights change with them.
+struct BasisAlignment {
+  std::vector<float> bases;              // the aligned F
+  std::vector<std::vector<int>> active;  // per cluster its used terms before (empty: no change)
+  std::vector<Eigen::MatrixXd> weight_transform;  // per cluster: W' (used terms first) = W_active T
+};
+
+// The alignment of `field`'s bases, the reference weighted by `cluster_sizes` (stored rows per
+// cluster): from the bases alone, so that a field held in strips (its stored rows on disk) is
+// aligned strip by strip with apply_basis_alignment.
+BasisAlignment cluster_basis_alignment(const CompressedField& field,
+                                       const std::vector<std::size_t>& cluster_sizes);
+
+// Sets `field`'s bases to the aligned ones and transforms the weights of its stored rows.
+void apply_basis_alignment(const BasisAlignment& alignment, CompressedField& field);
+
+// Both in place, the cluster sizes counted from `field`; the product W F^k of every row changes only by float rounding. Clusters whose basis
 // has fewer independent rows than terms keep zero weights for the missing directions. Only a
 // cluster's used basis rows (not all zero, model/cluster_terms.hpp) are aligned, to the
 // reference's leading directions; they move to the cluster's first slots, and unused rows and

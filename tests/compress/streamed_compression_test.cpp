@@ -182,8 +182,8 @@ TEST_F(StreamedRun, ThePlanStaysInMemoryWhenTheFieldFitsAndRefusesWhenNothingFit
 
 // The plan for a side x side x 253 RGB field header whose first `inside` pixels are inside its
 // mask, compressed as the scale benchmark does (64 clusters, 4 terms, 12 residual entries) with
-// --memory-limit 3G.
-CompressionPlan benchmark_plan_under_3g(int side, std::size_t inside) {
+// --memory-limit 3G, by one process or several ranks.
+CompressionPlan benchmark_plan_under_3g(int side, std::size_t inside, bool several_ranks = false) {
   ReflectanceField header;
   header.width = side;
   header.height = side;
@@ -195,7 +195,8 @@ CompressionPlan benchmark_plan_under_3g(int side, std::size_t inside) {
   options.clustering.clusters = 64;
   options.clustering.terms = 4;
   options.residual.entries = 12;
-  return plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch");
+  return plan_compression(header, options, std::uint64_t(3) << 30, "test", 2, "scratch",
+                          several_ranks);
 }
 
 // A roomy budget for a large field still reads it in strips of at most 16 MiB of values (the
@@ -211,16 +212,33 @@ TEST(CompressionPlan, StripsStaySmallUnderALargeBudget) {
 }
 
 // Streamed, the compressed field is built in place and quantized in place: the plan counts it
-// once, beside the container encoder's byte sections, and so plans the scale benchmark's
-// 2560 x 2560 x 253 field (10.8 million functions inside its mask) within 3 GB, which two copies
-// of it would not fit.
+// once, beside the container encoder's byte sections (here 4.5 million functions, under half the
+// budget, so it stays in memory).
 TEST(CompressionPlan, CountsTheCompressedFieldOnce) {
-  const CompressionPlan plan = benchmark_plan_under_3g(2560, 3'610'000);
+  const CompressionPlan plan = benchmark_plan_under_3g(2560, 1'500'000);
   ASSERT_TRUE(plan.streamed);
-  const std::uint64_t compressed = std::uint64_t(3'610'000) * 3 * (4 * 4 + 12 * 8 + 8);
+  EXPECT_FALSE(plan.compressed_on_disk);
+  const std::uint64_t compressed = std::uint64_t(1'500'000) * 3 * (4 * 4 + 12 * 8 + 8);
   EXPECT_GE(plan.model_bytes, compressed + compressed / 4 * 3);
   EXPECT_LT(plan.model_bytes, 2 * compressed);
   EXPECT_GE(plan.sample_rows, 16u * 64);
+}
+
+// The scale benchmark's 2560 x 2560 x 253 field (10.8 million functions inside its mask): held,
+// its compressed field would take most of 3 GB, so one process builds it on disk and holds only
+// the passes' state per row; several ranks gather it at the root, so they keep it in memory.
+TEST(CompressionPlan, PutsTheCompressedFieldOnDiskWhenItWouldTakeHalfTheBudget) {
+  const CompressionPlan plan = benchmark_plan_under_3g(2560, 3'610'000);
+  ASSERT_TRUE(plan.streamed);
+  EXPECT_TRUE(plan.compressed_on_disk);
+  const std::uint64_t functions = std::uint64_t(3'610'000) * 3;
+  const std::uint64_t compressed = functions * (4 * 4 + 12 * 8 + 8);
+  EXPECT_LT(plan.model_bytes, compressed / 2);
+  EXPECT_GE(plan.scratch_bytes, functions * 253 * 2 + compressed);
+  EXPECT_NE(plan.describe().find("the compressed field on disk"), std::string::npos);
+  const CompressionPlan ranks = benchmark_plan_under_3g(2560, 3'610'000, true);
+  EXPECT_FALSE(ranks.compressed_on_disk);
+  EXPECT_GE(ranks.model_bytes, compressed + compressed / 4 * 3);
 }
 
 TEST(ScratchRows, RowsComeBackAtHalfPrecisionMoveExactlyAndTheFileGoes) {

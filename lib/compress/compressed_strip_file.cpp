@@ -1,0 +1,114 @@
+// Implementation of the on-disk compressed strips (see compressed_strip_file.hpp).
+#include "compress/compressed_strip_file.hpp"
+
+#include <cstring>
+#include <relume/error.hpp>
+
+#include "model/compressed_field_rows.hpp"
+
+namespace relume {
+namespace {
+
+// A strip's stored rows as the file holds them, one array after the other: function indices,
+// clusters (u32), W (f32, rows x terms), residual row offsets (u32, rows + 1), light indices
+// (u32) and values (f32).
+template <class T>
+void put(std::string& out, const T* data, std::size_t count) {
+  out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+
+template <class T>
+void take(const char*& in, T* data, std::size_t count) {
+  std::memcpy(data, in, count * sizeof(T));
+  in += count * sizeof(T);
+}
+
+}  // namespace
+
+CompressedStripFile::CompressedStripFile(const std::filesystem::path& folder,
+                                         const std::string& name)
+    : file_(DiskFile::temporary(folder, name, "compressed strip file")) {}
+
+void CompressedStripFile::append(const CompressedField& strip) {
+  const std::size_t rows = strip.stored_rows();
+  const ResidualRows& e = strip.residual;
+  if (strip.weights.rows() != Eigen::Index(rows) || strip.cluster.size() != rows ||
+      e.rows() != rows)
+    throw Error("internal: a compressed strip of " + std::to_string(rows) +
+                " stored rows has inconsistent arrays");
+  Extent extent;
+  extent.offset = file_.size();
+  extent.rows = std::uint32_t(rows);
+  extent.nonzeros = std::uint32_t(e.nonzeros());
+  extent.first_row = shell_.height;
+  extent.height = strip.height;
+  std::string bytes;
+  put(bytes, strip.stored_function.data(), rows);
+  put(bytes, strip.cluster.data(), rows);
+  put(bytes, strip.weights.data(), std::size_t(strip.weights.size()));
+  put(bytes, e.row_offsets.data(), e.row_offsets.size());
+  put(bytes, e.light_index.data(), e.nonzeros());
+  put(bytes, e.values.data(), e.nonzeros());
+  file_.append(bytes.data(), bytes.size());
+  extents_.push_back(extent);
+  stored_rows_ += rows;
+  cluster_sizes_.resize(std::size_t(strip.clusters), 0);
+  for (const std::uint32_t k : strip.cluster) ++cluster_sizes_[k];
+
+  // The shell: the strip without its stored rows.
+  CompressedField rowless;
+  rowless.width = strip.width;
+  rowless.height = strip.height;
+  rowless.channels = strip.channels;
+  rowless.lights = strip.lights;
+  rowless.terms = strip.terms;
+  rowless.clusters = strip.clusters;
+  rowless.transform = strip.transform;
+  rowless.mask = strip.mask;
+  rowless.dark_pixels = strip.dark_pixels;
+  if (!strip.dark_pixels.empty()) rowless.dark = strip.dark;
+  rowless.non_negative = strip.non_negative;
+  if (shell_.height == 0) {
+    rowless.directions = strip.directions;
+    rowless.intensities = strip.intensities;
+  }
+  rowless.weights.resize(0, strip.terms);
+  append_compressed_rows(shell_, rowless);
+}
+
+CompressedField CompressedStripFile::read(std::size_t s) const {
+  const Extent& extent = extents_.at(s);
+  CompressedField strip = compressed_rows(shell_, extent.first_row, extent.height);
+  const std::size_t rows = extent.rows, nonzeros = extent.nonzeros;
+  std::string bytes(rows * (8 + 4 * std::size_t(shell_.terms)) + (rows + 1) * 4 + nonzeros * 8,
+                    '\0');
+  file_.read_at(extent.offset, bytes.data(), bytes.size());
+  const char* in = bytes.data();
+  strip.stored_function.resize(rows);
+  strip.cluster.resize(rows);
+  strip.weights.resize(Eigen::Index(rows), shell_.terms);
+  strip.residual.row_offsets.resize(rows + 1);
+  strip.residual.light_index.resize(nonzeros);
+  strip.residual.values.resize(nonzeros);
+  take(in, strip.stored_function.data(), rows);
+  take(in, strip.cluster.data(), rows);
+  take(in, strip.weights.data(), std::size_t(strip.weights.size()));
+  take(in, strip.residual.row_offsets.data(), rows + 1);
+  take(in, strip.residual.light_index.data(), nonzeros);
+  take(in, strip.residual.values.data(), nonzeros);
+  return strip;
+}
+
+std::vector<int> CompressedStripFile::first_rows() const {
+  std::vector<int> rows;
+  for (const Extent& extent : extents_) rows.push_back(extent.first_row);
+  return rows;
+}
+
+std::vector<std::size_t> CompressedStripFile::cluster_sizes() const {
+  std::vector<std::size_t> sizes = cluster_sizes_;
+  sizes.resize(std::size_t(shell_.clusters), 0);
+  return sizes;
+}
+
+}  // namespace relume
