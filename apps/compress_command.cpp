@@ -18,6 +18,7 @@
 #include "compress/compression_report.hpp"
 #include "compress/compression_target.hpp"
 #include "compress/opencl_assignment.hpp"
+#include "compress/rank_exchange.hpp"
 #include "compress/rate_control.hpp"
 #include "compress/storage_precision.hpp"
 #include "compress/streamed_compression.hpp"
@@ -323,9 +324,12 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
     psnr_mask = read_mask(arguments.psnr_mask, shape.width, shape.height);
 
   CompressedField compressed, stored;
-  // A streamed run whose compressed field is on disk (plan.compressed_on_disk): its strips, and
-  // how they are stored (`stored` stays empty).
+  // A streamed run whose compressed field is on disk (plan.compressed_on_disk): this rank's strip
+  // file (the root's has every rank's strips), how they are stored, and at the root the stored
+  // field that is written (`stored` stays empty).
   std::unique_ptr<CompressedStripFile> strip_file;
+  std::size_t band_strips = 0;
+  StripStorage strip_storage;
   std::optional<CompressedFieldStrips> stored_on_disk;
   RelativeError float32_masked;
   std::optional<QuantizationChoice> quantization;
@@ -336,6 +340,11 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   // A streamed run's errors, strip by strip; with several ranks every rank measures its band of
   // what the root stores.
   const auto measure_streamed = [&](const CompressedField& stored_at_root) {
+    if (strip_file)
+      return measure_errors_on_disk(*reader, streamed_bands, plan.strip_rows, *strip_file,
+                                    band_strips, strip_storage, stats.residual_entries,
+                                    arguments.psnr_white, psnr_mask, threads,
+                                    options.clustering.quiet);
     return measure_streamed_errors(*reader, streamed_bands, plan.strip_rows, stored_at_root,
                                    stats.residual_entries, arguments.psnr_white, psnr_mask,
                                    threads, options.clustering.quiet);
@@ -346,16 +355,20 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
         *reader, options, plan, stats, streamed.emplace(), output.filename().string() + ".scratch",
         hook, resume ? &*resume : nullptr);
     streamed_bands = result.bands;
+    strip_file = std::move(result.strips);
+    band_strips = result.band_strips;
     if (!ranks.root()) {  // the root writes and reports
+      if (strip_file) broadcast_strip_storage(ranks, strip_storage);
       measure_streamed(CompressedField{});
       return nlohmann::ordered_json();
     }
     quantize_start = Clock::now();
     float32_masked = result.float32_masked;
-    if (result.strips) {
-      strip_file = std::move(result.strips);
-      stored_on_disk = stored_strips(result.original_sample, result.sampled, *strip_file,
-                                     precision, quantization);
+    if (strip_file) {
+      strip_storage = choose_strip_storage(result.original_sample, result.sampled, *strip_file,
+                                           precision, quantization);
+      broadcast_strip_storage(ranks, strip_storage);
+      stored_on_disk = stored_strips(*strip_file, strip_storage);
     } else {
       stored = std::move(result.field);
       quantization = store_with_precision_on_strips(result.original_sample, result.sample_rows,
@@ -399,19 +412,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   const auto error_start = Clock::now();
   CompressionRun run;
   run.threads = resolve_thread_count(threads);
-  if (stored_on_disk) {
-    run.errors = measure_strip_errors(
-        *reader, 0, shape.height, plan.strip_rows,
-        [&](int y, int rows) {
-          const std::size_t s = std::size_t(y / plan.strip_rows);
-          CompressedField strip = stored_on_disk->strip(s);
-          if (stored_on_disk->first_rows.at(s) != y || strip.height != rows)
-            throw Error("internal: the error measure's strips are not the build's");
-          return strip;
-        },
-        stats.residual_entries, arguments.psnr_white, psnr_mask, threads,
-        options.clustering.quiet);
-  } else if (plan.streamed) {
+  if (plan.streamed) {
     run.errors = measure_streamed(stored);
   } else {
     run.errors = measure_field_errors(*field, stored, stats.residual_entries, arguments.psnr_white,

@@ -98,10 +98,11 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   const bool by_peak = options.residual_allocation == ResidualAllocation::peak;
   const std::uint64_t build_in_memory =
       compressed + compressed / 4 * 3 + functions * (by_peak ? 24 : 16);
-  // One process puts it on disk when holding it would take more than half of what the plan may
-  // use (the rest is for the sample and the strips). Several ranks keep it in memory (the root
-  // gathers it), and so does the peak allocation (it ranks the entries of the whole field).
-  plan.compressed_on_disk = !stream_anyway && !by_peak && build_in_memory > budget / 20 * 17 / 2;
+  // It goes to disk when holding it would take more than half of what the plan may use (the
+  // rest is for the sample and the strips), unless the peak allocation keeps it in memory (it
+  // ranks the entries of the whole field). The rule is the same for any number of ranks, so that
+  // they plan alike.
+  plan.compressed_on_disk = !by_peak && build_in_memory > budget / 20 * 17 / 2;
   const std::uint64_t build =
       plan.compressed_on_disk ? functions * 8 + std::uint64_t(header.pixels()) : build_in_memory;
   // On disk: the compressed strips, then the container's raw row sections and their codings.

@@ -27,9 +27,10 @@ struct CompressionPlan {
   std::size_t quantization_rows = 0;  // original functions kept to choose the quantization on
   std::uint64_t model_bytes = 0;      // the compressed field, its copies and the pass state
   std::uint64_t scratch_bytes = 0;    // the scratch file, at most
-  // The compressed field is built into a file in the scratch folder and written to the container
-  // strip by strip, never held whole: when holding it would take more than half the budget (one
-  // process, without the peak residual allocation, which ranks the entries of the whole field).
+  // The compressed field is built into a file in the scratch folder (every rank its band's; the
+  // root gathers them into its own) and written to the container strip by strip, never held
+  // whole: when holding it would take more than half the budget (not with the peak residual
+  // allocation, which ranks the entries of the whole field).
   bool compressed_on_disk = false;
   std::filesystem::path scratch_folder;
 
@@ -39,8 +40,7 @@ struct CompressionPlan {
 // The plan for a field of `header`'s shape (values empty; mask set) within `budget` bytes, with
 // `threads` workers: in memory when the estimate fits (and `stream_anyway` is false: several
 // ranks always stream), else streamed with the tallest strips and the largest sample that fit
-// (the compressed field on disk when it would take more than half the budget, unless
-// `stream_anyway`: the root of several ranks gathers it).
+// (the compressed field on disk when it would take more than half the budget).
 // Throws Error with the numbers when even a one-row strip and the model do not fit.
 CompressionPlan plan_compression(const ReflectanceField& header, const CompressionOptions& options,
                                  std::uint64_t budget, const std::string& budget_source,

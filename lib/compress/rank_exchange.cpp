@@ -73,6 +73,16 @@ CompressedField take_field(ByteReader& in, const std::string& where) {
   return decode_container(std::string(bytes.begin(), bytes.end()), where);
 }
 
+// A field that may be empty (height 0: nothing built into it).
+void put_field_if_any(ByteWriter& out, const CompressedField& field, const std::string& where) {
+  out.u32(field.height > 0);
+  if (field.height > 0) put_field(out, field, where);
+}
+
+CompressedField take_field_if_any(ByteReader& in, const std::string& where) {
+  return in.u32() != 0 ? take_field(in, where) : CompressedField{};
+}
+
 }  // namespace
 
 void move_scratch_rows(Ranks& ranks, const ScratchRows& from,
@@ -179,7 +189,9 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
   }
   ByteWriter out;
   if (!ranks.root()) {
-    put_field(out, local.field, "cannot send a part");
+    put_field_if_any(out, local.field, "cannot send a part");
+    put_field_if_any(out, local.sampled, "cannot send a part's sample");
+    out.u64(local.residual_nonzeros);
     put_array(out, local.peaks.data(), local.peaks.size());
     put_array(out, local.sparse_counts.data(), local.sparse_counts.size());
     put_value(out, local.objective);
@@ -203,7 +215,9 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
     const std::string where = "the part of rank " + std::to_string(r);
     ByteReader in(messages[r], where);
     BuiltPart part;
-    part.field = take_field(in, where);
+    part.field = take_field_if_any(in, where);
+    part.sampled = take_field_if_any(in, where);
+    part.residual_nonzeros = in.u64();
     part.peaks = take_array<double>(in);
     part.sparse_counts = take_array<double>(in);
     part.objective = take_value<double>(in);
@@ -224,6 +238,72 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local) {
     parts.push_back(std::move(part));
   }
   return parts;
+}
+
+void gather_strips_to_root(Ranks& ranks, CompressedStripFile& strips) {
+  if (ranks.size() == 1) return;
+  std::vector<double> counts(std::size_t(ranks.size()), 0.0);
+  counts[std::size_t(ranks.rank())] = double(strips.strips());
+  ranks.sum_everywhere(counts.data(), counts.size());
+  // Rank by rank, strip by strip, so that the root appends them in order.
+  for (int r = 1; r < ranks.size(); ++r)
+    for (std::size_t s = 0; s < std::size_t(counts[std::size_t(r)]); ++s) {
+      std::vector<std::string> to(std::size_t(ranks.size()));
+      if (ranks.rank() == r) {
+        ByteWriter out;
+        put_field(out, strips.read(s), "cannot send a strip to the root");
+        to[0] = out.take();
+      }
+      const std::vector<std::string> received = ranks.exchange(std::move(to));
+      if (!ranks.root()) continue;
+      const std::string where = "strip " + std::to_string(s) + " of rank " + std::to_string(r);
+      ByteReader in(received[std::size_t(r)], where);
+      strips.append(take_field(in, where));
+    }
+}
+
+void broadcast_strip_storage(Ranks& ranks, StripStorage& storage) {
+  if (ranks.size() == 1) return;
+  std::string bytes;
+  if (ranks.root()) {
+    ByteWriter out;
+    out.u32(storage.quantized);
+    put_value(out, storage.steps);
+    put_value(out, storage.weights);
+    put_value(out, storage.residual);
+    const BasisAlignment& alignment = storage.alignment;
+    put_array(out, alignment.bases.data(), alignment.bases.size());
+    out.u64(alignment.active.size());
+    for (std::size_t k = 0; k < alignment.active.size(); ++k) {
+      put_array(out, alignment.active[k].data(), alignment.active[k].size());
+      const Eigen::MatrixXd& transform = alignment.weight_transform[k];
+      out.u64(std::uint64_t(transform.rows()));
+      put_array(out, transform.data(), std::size_t(transform.size()));
+    }
+    bytes = out.take();
+  }
+  ranks.broadcast(bytes);
+  if (ranks.root()) return;
+  ByteReader in(bytes, "the stored precision from the root");
+  storage.quantized = in.u32() != 0;
+  storage.steps = take_value<QuantizationSteps>(in);
+  storage.weights = take_value<ValuePrecision>(in);
+  storage.residual = take_value<ValuePrecision>(in);
+  BasisAlignment& alignment = storage.alignment;
+  alignment.bases = take_array<float>(in);
+  const std::uint64_t clusters = in.u64();
+  if (clusters > in.remaining()) in.fail("more clusters than the message holds");
+  alignment.active.resize(clusters);
+  alignment.weight_transform.resize(clusters);
+  for (std::size_t k = 0; k < clusters; ++k) {
+    alignment.active[k] = take_array<int>(in);
+    const std::uint64_t rows = in.u64();
+    const std::vector<double> values = take_array<double>(in);
+    if (rows == 0 ? !values.empty() : values.size() % rows != 0)
+      in.fail("a weight transform whose values do not fill its rows");
+    alignment.weight_transform[k] = Eigen::Map<const Eigen::MatrixXd>(
+        values.data(), Eigen::Index(rows), Eigen::Index(rows == 0 ? 0 : values.size() / rows));
+  }
 }
 
 CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole,

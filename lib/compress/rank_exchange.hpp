@@ -2,9 +2,10 @@
 // bytes: scratch rows (moved between ranks so that their bands hold even work), every rank's
 // share of the clustering sample (gathered at the root, which clusters it),
 // the bases (broadcast by the root after every solve), the F-step's sums (added up at the root),
-// every rank's part of the compressed field (gathered at the root, which writes the file), then
-// every rank's band of the stored field (sent by the root) and the errors each rank measured on
-// it (merged at the root). With one process each is a plain copy.
+// every rank's part of the compressed field (gathered at the root, which writes the file; on disk,
+// strip by strip), then every rank's band of the stored field (sent by the root; on disk, how to
+// store its own strips) and the errors each rank measured on it (merged at the root). With one
+// process each is a plain copy.
 #pragma once
 
 #include <relume/compressed_field.hpp>
@@ -14,8 +15,10 @@
 
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_model.hpp"
+#include "compress/compressed_strip_file.hpp"
 #include "compress/field_errors.hpp"
 #include "compress/scratch_rows.hpp"
+#include "compress/storage_precision.hpp"
 #include "core/ranks.hpp"
 
 namespace relume {
@@ -49,8 +52,8 @@ struct BuiltPart {
   RelativeError float32_masked;       // Eq. 16 of `field` over its masked functions
   ReflectanceField original_sample;   // the quantization's original pixel rows
   std::vector<std::pair<int, int>> sample_rows;
-  // One process with its strips on disk (CompressedStripFile) only, never exchanged: the
-  // residual entries built and the compressed rows of original_sample's pixel rows.
+  // With the strips on disk (CompressedStripFile) only: the residual entries built and the
+  // compressed rows of original_sample's pixel rows.
   std::uint64_t residual_nonzeros = 0;
   CompressedField sampled;
 };
@@ -60,6 +63,13 @@ std::vector<BuiltPart> gather_parts(Ranks& ranks, BuiltPart&& local);
 
 // This rank's pixel rows [bands[rank], bands[rank + 1]) of the root's `whole` field (ignored
 // elsewhere), as a compressed field of their own (compressed_rows).
+// With the compressed field on disk: every other rank's strips (its band's, as built) appended to
+// the root's `strips` in rank order (the root's own come first); the other ranks keep theirs.
+void gather_strips_to_root(Ranks& ranks, CompressedStripFile& strips);
+
+// The root's `storage` into every rank's, so that each stores its own strips as the root does.
+void broadcast_strip_storage(Ranks& ranks, StripStorage& storage);
+
 CompressedField scatter_bands(Ranks& ranks, const CompressedField& whole,
                               const std::vector<int>& bands);
 

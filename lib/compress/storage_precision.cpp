@@ -76,39 +76,47 @@ std::optional<QuantizationChoice> store_with_precision_on_strips(
   return choice;
 }
 
-CompressedFieldStrips stored_strips(const ReflectanceField& sample, const CompressedField& sampled,
-                                    const CompressedStripFile& strips,
-                                    const StoragePrecision& precision,
-                                    std::optional<QuantizationChoice>& choice) {
-  CompressedFieldStrips stored;
-  stored.shell = strips.shell();
-  stored.first_rows = strips.first_rows();
-  const ContainerOptions container = precision.container_options();
-  if (!precision.quantizes()) {
-    stored.strip = [&strips, container](std::size_t s) {
-      return quantize_for_container(strips.read(s), container);
-    };
-    return stored;
+CompressedField StripStorage::store(CompressedField strip) const {
+  if (quantized) {
+    apply_basis_alignment(alignment, strip);
+    strip = quantize_values(std::move(strip), steps);
   }
+  ContainerOptions options;
+  options.weights = weights;
+  options.residual = residual;
+  return quantize_for_container(std::move(strip), options);
+}
+
+StripStorage choose_strip_storage(const ReflectanceField& sample, const CompressedField& sampled,
+                                  const CompressedStripFile& strips,
+                                  const StoragePrecision& precision,
+                                  std::optional<QuantizationChoice>& choice) {
+  StripStorage storage;
+  storage.weights = precision.weights;
+  storage.residual = precision.residual;
+  if (!precision.quantizes()) return storage;
   const QuantizationBudget budget = streamed_quantization_budget(precision);
-  const BasisAlignment alignment = cluster_basis_alignment(strips.shell(), strips.cluster_sizes());
+  storage.quantized = true;
+  storage.alignment = cluster_basis_alignment(strips.shell(), strips.cluster_sizes());
   CompressedField aligned_sample = sampled;
-  apply_basis_alignment(alignment, aligned_sample);
+  apply_basis_alignment(storage.alignment, aligned_sample);
   choice = choose_quantization(sample, aligned_sample, budget);
   for (std::size_t s = 0; s < strips.strips(); ++s) {
     throw_if_interrupted();
     CompressedField strip = strips.read(s);
-    apply_basis_alignment(alignment, strip);
+    apply_basis_alignment(storage.alignment, strip);
     choice->steps = steps_that_fit(strip, choice->steps);
   }
-  apply_basis_alignment(alignment, stored.shell);
-  stored.shell = quantize_for_container(quantize_values(std::move(stored.shell), choice->steps),
-                                        container);
-  stored.strip = [&strips, alignment, steps = choice->steps, container](std::size_t s) {
-    CompressedField strip = strips.read(s);
-    apply_basis_alignment(alignment, strip);
-    return quantize_for_container(quantize_values(std::move(strip), steps), container);
-  };
+  storage.steps = choice->steps;
+  return storage;
+}
+
+CompressedFieldStrips stored_strips(const CompressedStripFile& strips,
+                                    const StripStorage& storage) {
+  CompressedFieldStrips stored;
+  stored.shell = storage.store(strips.shell());
+  stored.first_rows = strips.first_rows();
+  stored.strip = [&strips, &storage](std::size_t s) { return storage.store(strips.read(s)); };
   return stored;
 }
 

@@ -11,6 +11,7 @@
 
 #include "compress/compressed_strip_file.hpp"
 #include "container/container_strips.hpp"
+#include "model/basis_alignment.hpp"
 #include "model/quantization.hpp"
 
 namespace relume {
@@ -45,16 +46,31 @@ std::optional<QuantizationChoice> store_with_precision_on_strips(
     const ReflectanceField& sample, const std::vector<std::pair<int, int>>& strips,
     CompressedField& field, const StoragePrecision& precision);
 
-// The stored form of a field whose compressed strips are on disk (compress/compressed_strip_file.hpp),
-// as store_with_precision_on_strips makes it of one in memory: the bases aligned for the clusters'
-// sizes, the steps chosen against `sample` (pixel rows of the original) and `sampled` (the same
-// rows of the field as built), then widened in one pass over the strips until every value fits.
-// The result's strips are aligned and rounded as they are read (by the container writer, the
-// error measure); `strips` must outlive it. `choice` receives the quantization chosen, if any.
-// Throws Error as store_with_precision_on_strips.
-CompressedFieldStrips stored_strips(const ReflectanceField& sample, const CompressedField& sampled,
-                                    const CompressedStripFile& strips,
-                                    const StoragePrecision& precision,
-                                    std::optional<QuantizationChoice>& choice);
+// How every strip of a field whose compressed strips are on disk (compress/compressed_strip_file.hpp)
+// is stored, as store_with_precision_on_strips stores a field in memory: its bases aligned and its
+// values rounded to the steps, then through the container's float16 where asked. The same for
+// every strip, so that several ranks store their own strips alike (compress/rank_exchange.hpp).
+struct StripStorage {
+  bool quantized = false;  // aligned and rounded to `steps`
+  BasisAlignment alignment;
+  QuantizationSteps steps;
+  ValuePrecision weights = ValuePrecision::float32, residual = ValuePrecision::float32;
+
+  // `strip` (or the strips' shell) as stored.
+  CompressedField store(CompressedField strip) const;
+};
+
+// The storage of `strips`: the bases aligned for the clusters' sizes, the steps chosen against
+// `sample` (pixel rows of the original) and `sampled` (the same rows of the field as built), then
+// widened in one pass over the strips until every value fits. `choice` receives the quantization
+// chosen, if any. Throws Error as store_with_precision_on_strips.
+StripStorage choose_strip_storage(const ReflectanceField& sample, const CompressedField& sampled,
+                                  const CompressedStripFile& strips,
+                                  const StoragePrecision& precision,
+                                  std::optional<QuantizationChoice>& choice);
+
+// `strips` as `storage` stores them, each strip stored as it is read (by the container writer,
+// the error measure); both must outlive the result.
+CompressedFieldStrips stored_strips(const CompressedStripFile& strips, const StripStorage& storage);
 
 }  // namespace relume

@@ -402,15 +402,17 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   // 4. Build: the strips again, assigned to the final bases; the parts gathered at the root.
   start = Clock::now();
   stats.residual_entries = options.residual.entries_for(lights);
-  if (plan.compressed_on_disk) {
-    if (ranks.size() > 1)
-      throw Error("internal: a plan with the compressed field on disk for several ranks");
+  if (plan.compressed_on_disk)
     result.strips = std::make_unique<CompressedStripFile>(plan.scratch_folder,
                                                           scratch_name + ".compressed");
-  }
   std::vector<BuiltPart> parts =
       gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
                                      scratch->rows(), begin_row, end_row, result.strips.get()));
+  if (result.strips) {
+    result.band_strips = result.strips->strips();
+    result.strips->shell().bases = bases.bases;
+    gather_strips_to_root(ranks, *result.strips);
+  }
   // Every rank's time outside the exchanges, and bytes sent, at the root.
   std::vector<double> rank_figures(2 * std::size_t(ranks.size()), 0.0);
   rank_figures[2 * std::size_t(ranks.rank())] = seconds_since(run_start) - ranks.exchange_seconds();
@@ -428,10 +430,11 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   std::vector<double> sparse(std::size(sparseness_thresholds), 0.0), peak;
   std::size_t entries = 0;
   for (const BuiltPart& part : parts) entries += part.field.residual.values.size();
+  if (result.strips) stats.residual_nonzeros = 0;
   for (BuiltPart& part : parts) {
     if (result.strips) {
-      stats.residual_nonzeros = part.residual_nonzeros;
-      result.sampled = std::move(part.sampled);
+      stats.residual_nonzeros += part.residual_nonzeros;
+      append_compressed_rows(result.sampled, part.sampled);
     } else if (out.height == 0) {
       out = std::move(part.field);  // one rank's part is the field: no copy
       // Room for the other ranks' parts, each freed as it is stacked.
@@ -501,6 +504,31 @@ FieldErrors measure_strip_errors(
   }
   progress.finish();
   return total;
+}
+
+FieldErrors measure_errors_on_disk(FieldStripReader& reader, const std::vector<int>& bands,
+                                   int strip_rows, const CompressedStripFile& strips,
+                                   std::size_t band_strips, const StripStorage& storage,
+                                   int residual_entries, double white,
+                                   const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                   bool quiet) {
+  Ranks& ranks = process_ranks();
+  const RankShare band{bands.at(std::size_t(ranks.rank())),
+                       bands.at(std::size_t(ranks.rank()) + 1)};
+  FieldErrors band_errors = measure_strip_errors(
+      reader, band.first, band.end, strip_rows,
+      [&](int y, int rows) {
+        const std::size_t s = std::size_t((y - band.first) / strip_rows);
+        if (s >= band_strips) throw Error("internal: the error measure's band has more strips");
+        CompressedField strip = storage.store(strips.read(s));
+        if (strip.height != rows)
+          throw Error("internal: the error measure's strips are not the build's");
+        return strip;
+      },
+      residual_entries, white, psnr_mask, threads, quiet);
+  return gather_errors(ranks, std::move(band_errors),
+                       band.first * std::int64_t(reader.header().width) *
+                           reader.header().channels);
 }
 
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,

@@ -25,6 +25,7 @@
 #include "compress/clustered_factorization.hpp"
 #include "compress/compressed_strip_file.hpp"
 #include "compress/compression_plan.hpp"
+#include "compress/storage_precision.hpp"
 #include "compress/field_errors.hpp"
 #include "field/field_strips.hpp"
 
@@ -53,8 +54,10 @@ struct StreamedTrace {
 struct StreamedCompression {
   CompressedField field;  // float32, as compress_field returns it (empty with `strips`)
   // With the plan's compressed field on disk: its strips (float32, as built), and the compressed
-  // rows of `original_sample` (what store_with_precision_on_strips cuts out of `field`).
+  // rows of `original_sample` (what store_with_precision_on_strips cuts out of `field`). Every
+  // rank's file starts with its band's `band_strips` strips; the root's holds every rank's after.
   std::unique_ptr<CompressedStripFile> strips;
+  std::size_t band_strips = 0;
   CompressedField sampled;
   // Eq. 16 of `field` over the masked functions, measured strip by strip as it was built (so
   // that no float32 copy need be kept after quantization).
@@ -95,6 +98,16 @@ FieldErrors measure_strip_errors(
     const std::function<CompressedField(int first_row, int rows)>& stored_rows,
     int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
     unsigned threads, bool quiet);
+
+// measure_streamed_errors of a field whose strips are on disk: every rank (all call it) measures
+// its band from the first `band_strips` strips of its own `strips`, each stored as `storage`
+// says (broadcast_strip_storage); the root gets the merged errors.
+FieldErrors measure_errors_on_disk(FieldStripReader& reader, const std::vector<int>& bands,
+                                   int strip_rows, const CompressedStripFile& strips,
+                                   std::size_t band_strips, const StripStorage& storage,
+                                   int residual_entries, double white,
+                                   const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                   bool quiet);
 
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
                                     int strip_rows, const CompressedField& stored,

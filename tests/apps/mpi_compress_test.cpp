@@ -1,7 +1,8 @@
 // Tests of `mpirun -n N relume compress` (the command built with MPI, apps/mpi_ranks.*): 1, 2 and
 // 3 ranks on loopback compress one field (streamed) within 1% of one process's error, to the
 // same container and, measured band by band, the same errors as one rank, a rank count gives the
-// same bytes every time, the report says how the ranks shared the work, and a
+// same bytes every time, the report says how the ranks shared the work (with the compressed
+// field gathered in memory, and with it on disk, each rank's strips sent to the root), and a
 // failure on one rank (a truncated image under its rows only) ends every rank with that rank's
 // message and leaves no output.
 #include <gtest/gtest.h>
@@ -39,84 +40,104 @@ class MpiCompress : public ::testing::Test {
     const auto synth = testing::run_relume("-q synth -o '" + (dir_ / "scene").string() +
                                            "' --size 64x64 --lights 32 --samples 1");
     ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    // Few lights and 8 residual entries a row: the compressed field outweighs the strips, and
+    // under 3 MB it is built on disk.
+    const auto few = testing::run_relume("-q synth -o '" + (dir_ / "few_lights").string() +
+                                         "' --size 96x96 --lights 16 --samples 1");
+    ASSERT_EQ(few.exit_code, 0) << few.output;
 #endif
   }
 
-  // `[mpirun -n ranks] relume compress scene -o dir/name.relume --report dir/name.json`; ranks 0:
-  // without mpirun. The memory limit makes one process stream too (the field is 1.5 MB as
-  // float32, 3.8 MB to compress in memory), so that all compare the same method.
-  testing::CommandResult compress(int ranks, const std::string& name) {
+  // `[mpirun -n ranks] relume compress dir/scene -o dir/name.relume --report dir/name.json
+  // [extra]`; ranks 0: without mpirun. The memory limit makes one process stream too (the 64x64
+  // field is 1.5 MB as float32, 3.8 MB to compress in memory), so that all compare the same
+  // method.
+  testing::CommandResult compress(int ranks, const std::string& name,
+                                  const std::string& scene = "scene",
+                                  const std::string& extra = "") {
     const std::string relume = ranks == 0 ? std::string(RELUME_BINARY)
                                           : std::string(mpirun) +
                                                 " --allow-run-as-root --oversubscribe -n " +
                                                 std::to_string(ranks) + " " + RELUME_BINARY;
     return testing::run_command(
-        relume + " -q --memory-limit 3M compress '" + (dir_ / "scene").string() + "' -o '" +
+        relume + " -q --memory-limit 3M compress '" + (dir_ / scene).string() + "' -o '" +
         (dir_ / (name + ".relume")).string() + "' --report '" + (dir_ / (name + ".json")).string() +
-        "' --clusters 16 --threads 1 2>&1");
+        "' --clusters 16 --threads 1 " + extra + " 2>&1");
+  }
+
+  // One process, then 1, 2 and 3 ranks, then 2 ranks again, on `scene`: the plan holds the
+  // compressed field on disk or not.
+  void expect_ranks_share_the_work(const std::string& scene, const std::string& extra,
+                                   bool on_disk) {
+    const auto single = compress(0, "single", scene, extra);
+    ASSERT_EQ(single.exit_code, 0) << single.output;
+    const double single_error = read_json(dir_ / "single.json")["error_masked"].get<double>();
+    for (const int ranks : {1, 2, 3}) {
+      const std::string name = "ranks" + std::to_string(ranks);
+      const auto run = compress(ranks, name, scene, extra);
+      ASSERT_EQ(run.exit_code, 0) << run.output;
+      const nlohmann::json report = read_json(dir_ / (name + ".json"));
+      EXPECT_EQ(report["plan"]["ranks"].get<int>(), ranks);
+      EXPECT_EQ(report["plan"]["compressed_on_disk"].get<bool>(), on_disk);
+      if (ranks > 1) {
+        EXPECT_TRUE(report["plan"]["streamed"].get<bool>()) << "several ranks always stream";
+        EXPECT_EQ(report["streamed"]["rank_bytes_sent"].size(), std::size_t(ranks));
+        EXPECT_EQ(report["streamed"]["rank_compute_seconds"].size(), std::size_t(ranks));
+        EXPECT_GT(report["streamed"]["rank_bytes_sent"][1].get<double>(), 0);
+        // The bands hold the same stored functions to within two pixel rows', all of them together
+        // one rank's.
+        const auto shares =
+            report["streamed"]["rank_stored_functions"].get<std::vector<std::uint64_t>>();
+        ASSERT_EQ(shares.size(), std::size_t(ranks));
+        const auto [fewest, most] = std::minmax_element(shares.begin(), shares.end());
+        EXPECT_LE(*most - *fewest, 2u * report["field"]["width"].get<std::uint64_t>() * 3u);
+        EXPECT_EQ(std::accumulate(shares.begin(), shares.end(), std::uint64_t(0)),
+                  read_json(dir_ / "ranks1.json")["streamed"]["rank_stored_functions"][0]
+                      .get<std::uint64_t>());
+      }
+      if (ranks > 1) {
+        // The same model as one rank's, whose errors each rank measured on its own band of rows:
+        // merged at the root they are one rank's (up to the order of the sums), down to where the
+        // largest per-light error is.
+        const nlohmann::json one = read_json(dir_ / "ranks1.json");
+        EXPECT_TRUE(read_file(dir_ / (name + ".relume")) == read_file(dir_ / "ranks1.relume"));
+        EXPECT_NEAR(report["psnr_8bit"]["whole_frame"].get<double>(),
+                    one["psnr_8bit"]["whole_frame"].get<double>(), 1e-9);
+        EXPECT_NEAR(report["psnr_8bit"]["mask"].get<double>(),
+                    one["psnr_8bit"]["mask"].get<double>(), 1e-9);
+        EXPECT_NEAR(report["error_all"].get<double>(), one["error_all"].get<double>(), 1e-12);
+        const nlohmann::json& light = report["per_light_error_masked"];
+        const nlohmann::json& one_light = one["per_light_error_masked"];
+        EXPECT_EQ(light["largest_at"], one_light["largest_at"]);
+        EXPECT_EQ(light["largest_relative"], one_light["largest_relative"]);
+        EXPECT_EQ(light["functions_measured"], one_light["functions_measured"]);
+        EXPECT_EQ(light["negative_values"], one_light["negative_values"]);
+        EXPECT_EQ(report["error_masked_detail"]["functions_averaged"],
+                  one["error_masked_detail"]["functions_averaged"]);
+      }
+      const double error = report["error_masked"].get<double>();
+      std::printf("%d ranks: error_masked %.6f (one process, no mpirun: %.6f)\n", ranks, error,
+                  single_error);
+      EXPECT_NEAR(error, single_error, 0.01 * single_error);
+      for (const auto& entry : fs::directory_iterator(dir_.path()))
+        EXPECT_FALSE(entry.path().filename().string().starts_with(".tmp-"))
+            << "a scratch file is left: " << entry.path();
+    }
+    const auto again = compress(2, "again", scene, extra);
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_TRUE(read_file(dir_ / "again.relume") == read_file(dir_ / "ranks2.relume"))
+        << "two ranks give the same container every time";
   }
 
   testing::TempDir dir_;
 };
 
 TEST_F(MpiCompress, RanksShareTheWorkAndReachTheSingleProcessQuality) {
-  const auto single = compress(0, "single");
-  ASSERT_EQ(single.exit_code, 0) << single.output;
-  const double single_error = read_json(dir_ / "single.json")["error_masked"].get<double>();
-  for (const int ranks : {1, 2, 3}) {
-    const std::string name = "ranks" + std::to_string(ranks);
-    const auto run = compress(ranks, name);
-    ASSERT_EQ(run.exit_code, 0) << run.output;
-    const nlohmann::json report = read_json(dir_ / (name + ".json"));
-    EXPECT_EQ(report["plan"]["ranks"].get<int>(), ranks);
-    if (ranks > 1) {
-      EXPECT_TRUE(report["plan"]["streamed"].get<bool>()) << "several ranks always stream";
-      EXPECT_EQ(report["streamed"]["rank_bytes_sent"].size(), std::size_t(ranks));
-      EXPECT_EQ(report["streamed"]["rank_compute_seconds"].size(), std::size_t(ranks));
-      EXPECT_GT(report["streamed"]["rank_bytes_sent"][1].get<double>(), 0);
-      // The bands hold the same stored functions to within two pixel rows' (2 x 64 x 3), all of
-      // them together one rank's.
-      const auto shares =
-          report["streamed"]["rank_stored_functions"].get<std::vector<std::uint64_t>>();
-      ASSERT_EQ(shares.size(), std::size_t(ranks));
-      const auto [fewest, most] = std::minmax_element(shares.begin(), shares.end());
-      EXPECT_LE(*most - *fewest, 2u * 64u * 3u);
-      EXPECT_EQ(std::accumulate(shares.begin(), shares.end(), std::uint64_t(0)),
-                read_json(dir_ / "ranks1.json")["streamed"]["rank_stored_functions"][0]
-                    .get<std::uint64_t>());
-    }
-    if (ranks > 1) {
-      // The same model as one rank's, whose errors each rank measured on its own band of rows:
-      // merged at the root they are one rank's (up to the order of the sums), down to where the
-      // largest per-light error is.
-      const nlohmann::json one = read_json(dir_ / "ranks1.json");
-      EXPECT_TRUE(read_file(dir_ / (name + ".relume")) == read_file(dir_ / "ranks1.relume"));
-      EXPECT_NEAR(report["psnr_8bit"]["whole_frame"].get<double>(),
-                  one["psnr_8bit"]["whole_frame"].get<double>(), 1e-9);
-      EXPECT_NEAR(report["psnr_8bit"]["mask"].get<double>(), one["psnr_8bit"]["mask"].get<double>(),
-                  1e-9);
-      EXPECT_NEAR(report["error_all"].get<double>(), one["error_all"].get<double>(), 1e-12);
-      const nlohmann::json& light = report["per_light_error_masked"];
-      const nlohmann::json& one_light = one["per_light_error_masked"];
-      EXPECT_EQ(light["largest_at"], one_light["largest_at"]);
-      EXPECT_EQ(light["largest_relative"], one_light["largest_relative"]);
-      EXPECT_EQ(light["functions_measured"], one_light["functions_measured"]);
-      EXPECT_EQ(light["negative_values"], one_light["negative_values"]);
-      EXPECT_EQ(report["error_masked_detail"]["functions_averaged"],
-                one["error_masked_detail"]["functions_averaged"]);
-    }
-    const double error = report["error_masked"].get<double>();
-    std::printf("%d ranks: error_masked %.6f (one process, no mpirun: %.6f)\n", ranks, error,
-                single_error);
-    EXPECT_NEAR(error, single_error, 0.01 * single_error);
-    for (const auto& entry : fs::directory_iterator(dir_.path()))
-      EXPECT_FALSE(entry.path().filename().string().starts_with(".tmp-"))
-          << "a scratch file is left: " << entry.path();
-  }
-  const auto again = compress(2, "again");
-  ASSERT_EQ(again.exit_code, 0) << again.output;
-  EXPECT_TRUE(read_file(dir_ / "again.relume") == read_file(dir_ / "ranks2.relume"))
-      << "two ranks give the same container every time";
+  expect_ranks_share_the_work("scene", "", false);
+}
+
+TEST_F(MpiCompress, RanksBuildTheCompressedFieldOnDiskAndTheRootGathersIt) {
+  expect_ranks_share_the_work("few_lights", "--residual 8", true);
 }
 
 TEST_F(MpiCompress, AFailureOnOneRankEndsEveryRankWithItsMessage) {

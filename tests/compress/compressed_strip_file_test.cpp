@@ -100,7 +100,7 @@ TEST(CompressedStripFile, StripsComeBackAsAppendedAndTheFileGoes) {
 }
 
 // The in-memory path (store_with_precision_on_strips on the whole field) and the on-disk one
-// (stored_strips on its strips) choose the same steps against the same sample and write the same
+// (choose_strip_storage and stored_strips on its strips) choose the same steps against the same sample and write the same
 // container, for float32, float16 and quantized storage.
 TEST(StoredStrips, WriteTheContainerTheWholeFieldGives) {
   TempDir dir;
@@ -136,7 +136,8 @@ TEST(StoredStrips, WriteTheContainerTheWholeFieldGives) {
     const std::optional<QuantizationChoice> in_memory =
         store_with_precision_on_strips(sample, sample_rows, whole, precision);
     std::optional<QuantizationChoice> on_disk;
-    const CompressedFieldStrips stored = stored_strips(sample, sampled, file, precision, on_disk);
+    const StripStorage storage = choose_strip_storage(sample, sampled, file, precision, on_disk);
+    const CompressedFieldStrips stored = stored_strips(file, storage);
     ASSERT_EQ(in_memory.has_value(), on_disk.has_value());
     if (in_memory) {
       EXPECT_EQ(in_memory->steps.weight_step, on_disk->steps.weight_step);
