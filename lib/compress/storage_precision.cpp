@@ -5,7 +5,7 @@
 #include <relume/error.hpp>
 
 #include "container/container.hpp"
-#include "core/interruption.hpp"
+#include "core/progress.hpp"
 #include "model/basis_alignment.hpp"
 #include "model/compressed_field_rows.hpp"
 
@@ -101,12 +101,14 @@ StripStorage choose_strip_storage(const ReflectanceField& sample, const Compress
   CompressedField aligned_sample = sampled;
   apply_basis_alignment(storage.alignment, aligned_sample);
   choice = choose_quantization(sample, aligned_sample, budget);
+  ProgressReporter progress("compress: fitting the steps to every strip", strips.strips());
   for (std::size_t s = 0; s < strips.strips(); ++s) {
-    throw_if_interrupted();
+    progress.advance();
     CompressedField strip = strips.read(s);
     apply_basis_alignment(storage.alignment, strip);
     choice->steps = steps_that_fit(strip, choice->steps);
   }
+  progress.finish();
   storage.steps = choice->steps;
   return storage;
 }

@@ -8,7 +8,7 @@
 #include "container/section_file_coding.hpp"
 #include "core/atomic_file.hpp"
 #include "core/disk_file.hpp"
-#include "core/interruption.hpp"
+#include "core/progress.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/compressed_field_rows.hpp"
 
@@ -46,8 +46,10 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
   std::uint32_t longest = 0;
   std::vector<std::uint64_t> stored_functions;
   const std::uint64_t row_functions = std::uint64_t(shell.width) * std::uint64_t(shell.channels);
+  const std::string title = "writing " + path.filename().string();
+  ProgressReporter encoding(title + ": strips", 2 * strips.first_rows.size());
   for (std::size_t s = 0; s < strips.first_rows.size(); ++s) {
-    throw_if_interrupted();
+    encoding.advance();
     const CompressedField strip = strips.strip(s);
     validate_compressed_field(strip, where + " (" + rows_text(strips, s) + ")");
     counts.stored_rows += strip.stored_rows();
@@ -67,7 +69,7 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
         DiskFile::temporary(scratch_folder, path.filename().string() + "." + name, "raw section"));
   CompressedField above;
   for (std::size_t s = 0; s < strips.first_rows.size(); ++s) {
-    throw_if_interrupted();
+    encoding.advance();
     const CompressedField strip = strips.strip(s);
     CompressedField window = above;
     const std::size_t first_row = window.stored_rows();
@@ -79,6 +81,7 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
     for (std::size_t i = 0; i < raw.size(); ++i) raw[i].append(parts[i]->data(), parts[i]->size());
     if (strip.height > 0) above = compressed_rows(strip, strip.height - 1, 1);
   }
+  encoding.finish();
 
   // 3. The file: a place for the preamble, the sections coded one by one, then the preamble.
   std::vector<StoredSection> sections =
@@ -88,13 +91,16 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
                              value_bytes(stored_residual_precision(shell, options)));
   std::vector<std::uint64_t>().swap(stored_functions);
   ContainerLayout layout = new_container_layout();
+  std::uint64_t raw_bytes = 0;
+  for (const StoredSection& section : sections) raw_bytes += section.raw.size();
+  for (const DiskFile& file : raw) raw_bytes += file.size();
+  ProgressReporter coding(title + ": coding sections (raw bytes)", raw_bytes);
   write_atomically(path, [&](const fs::path& temp) {
     DiskFile out = DiskFile::create(temp, "container");
     const std::string placeholder(layout.preamble_bytes, '\0');
     out.append(placeholder.data(), placeholder.size());
     std::vector<SectionCoding> codings;
     for (StoredSection& section : sections) {
-      throw_if_interrupted();
       const std::uint64_t offset = out.size();
       const int from_file = row_section_index(section.name);
       if (from_file >= 0) {
@@ -104,22 +110,25 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
         codings.push_back(coded.coding);
         layout.sections.push_back({std::string(section.name), offset, coded.bytes, file.size(),
                                    coded.crc32, coded.coding.describe()});
+        coding.advance(file.size());
         continue;
       }
-      const std::size_t raw_bytes = section.raw.size();
+      const std::size_t section_bytes = section.raw.size();
       const CodedSection coded = options.entropy_coding && section.name != "header"
                                      ? code_section(section.raw, section.element_bytes)
                                      : CodedSection{std::move(section.raw), {}};
       out.append(coded.bytes.data(), coded.bytes.size());
       codings.push_back(coded.coding);
-      layout.sections.push_back({std::string(section.name), offset, coded.bytes.size(), raw_bytes,
-                                 crc32(coded.bytes), coded.coding.describe()});
+      layout.sections.push_back({std::string(section.name), offset, coded.bytes.size(),
+                                 section_bytes, crc32(coded.bytes), coded.coding.describe()});
+      coding.advance(section_bytes);
     }
     layout.file_bytes = out.size();
     const std::string preamble = encode_preamble(layout, codings);
     out.write_at(0, preamble.data(), preamble.size());
     out.close();
   });
+  coding.finish();
   return layout;
 }
 
