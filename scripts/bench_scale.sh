@@ -7,7 +7,8 @@
 #    float32, 1280x1280: 5 GB, 2560x2560: 20 GB; FIELD_SIDES overrides the list), compressed with
 #    --memory-limit 3G, and the 640x640 one also streamed under 400M: seconds, peak memory,
 #    scratch bytes, Eq. 16 error and seconds per stored function, in memory and streamed.
-#  24mp: a 6000x4000, 60-light hemisphere field (17 GB as float32) within 4 GB.
+#  24mp: a 6000x4000, 60-light hemisphere field (17 GB as float32) within 4 GB, and the same
+#    kind of field at 1500x1000 in memory for the cost per stored function.
 #  mpi: the 640x640x253 field (MPI_FIELD_SIDE overrides the side) streamed (--memory-limit 400M)
 #    by 1, 2, 4 and 8 ranks of one thread (mpirun --oversubscribe: 4 and 8 share this machine's
 #    cores), each rank's stored functions, time outside the exchanges and bytes sent, and a model
@@ -38,7 +39,8 @@ r = json.load(open(sys.argv[1]))
 f, plan = r["field"], r["plan"]
 stream = r.get("streamed", {})
 cells = [sys.argv[2], f["width"], f["height"], f["lights"], r["float32_input_bytes"], sys.argv[3],
-         "streamed" if plan["streamed"] else "in memory", plan.get("strip_rows", ""),
+         ("streamed, compressed field on disk" if plan.get("compressed_on_disk") else "streamed")
+         if plan["streamed"] else "in memory", plan.get("strip_rows", ""),
          plan.get("sample_rows", ""), stream.get("scratch_bytes", ""), r["seconds"],
          r["peak_memory_bytes"], f["stored_rows"], r["seconds"] / f["stored_rows"] * 1e6,
          r["error_masked"], r["bytes"]]
@@ -95,11 +97,16 @@ fields)
 24mp)
   csv="$out/scale_24mp.csv"
   echo "$streamed_header" >"$csv"
+  # The same kind of field at 1.5 megapixels, in memory: the cost per stored function to compare.
+  small="$out/synth_1500x1000_60"
+  [ -d "$small" ] || "$relume" -q synth -o "$small" --size 1500x1000 --lights 60 --hemisphere \
+    --samples 1
+  streamed_run "1500x1000_in_memory" "$small" 20G "$csv"
   field="$out/synth_6000x4000_60"
   [ -d "$field" ] || "$relume" -q synth -o "$field" --size 6000x4000 --lights 60 --hemisphere \
     --samples 1
   streamed_run "24mp" "$field" 4G "$csv"
-  rm -rf "$field"
+  rm -rf "$field" "$small"
   cat "$csv"
 ;;
 mpi)
