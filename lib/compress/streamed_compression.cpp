@@ -3,6 +3,7 @@
 #include "compress/streamed_compression.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <relume/error.hpp>
@@ -273,6 +274,38 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
   return part;
 }
 
+// The report's errors of pixel rows [first_row, end_row) of the field `reader` reads, strip by
+// strip: `stored_rows(y, rows)` gives the compressed field's pixel rows [y, y + rows), as stored.
+// This process's band only (function indices from the band's first).
+FieldErrors measure_strip_errors(
+    FieldStripReader& reader, int first_row, int end_row, int strip_rows,
+    const std::function<CompressedField(int first_row, int rows)>& stored_rows,
+    int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
+    unsigned threads, bool quiet) {
+  const ReflectanceField& header = reader.header();
+  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
+  FieldErrors total;
+  ProgressReporter progress("compress: measuring the error", std::uint64_t(end_row - first_row),
+                            quiet);
+  reader.rewind();
+  for (int y = first_row; y < end_row; y += strip_rows) {
+    throw_if_interrupted();
+    const int rows = std::min(strip_rows, end_row - y);
+    const ReflectanceField strip = reader.read(y, rows);
+    std::vector<std::uint8_t> strip_mask;
+    if (!psnr_mask.empty())
+      strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
+                        psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
+    merge_field_errors(total,
+                       measure_field_errors(strip, stored_rows(y, rows), residual_entries, white,
+                                            strip_mask, threads),
+                       (y - first_row) * row_functions);
+    progress.advance(std::uint64_t(rows));
+  }
+  progress.finish();
+  return total;
+}
+
 }  // namespace
 
 StreamedCompression compress_streamed(FieldStripReader& reader, const CompressionOptions& options,
@@ -475,35 +508,6 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.clusters = bases.clusters;
   stats.residual_seconds = trace.build_seconds = seconds_since(start);
   return result;
-}
-
-FieldErrors measure_strip_errors(
-    FieldStripReader& reader, int first_row, int end_row, int strip_rows,
-    const std::function<CompressedField(int first_row, int rows)>& stored_rows,
-    int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
-    unsigned threads, bool quiet) {
-  const ReflectanceField& header = reader.header();
-  const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
-  FieldErrors total;
-  ProgressReporter progress("compress: measuring the error", std::uint64_t(end_row - first_row),
-                            quiet);
-  reader.rewind();
-  for (int y = first_row; y < end_row; y += strip_rows) {
-    throw_if_interrupted();
-    const int rows = std::min(strip_rows, end_row - y);
-    const ReflectanceField strip = reader.read(y, rows);
-    std::vector<std::uint8_t> strip_mask;
-    if (!psnr_mask.empty())
-      strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
-                        psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
-    merge_field_errors(total,
-                       measure_field_errors(strip, stored_rows(y, rows), residual_entries, white,
-                                            strip_mask, threads),
-                       (y - first_row) * row_functions);
-    progress.advance(std::uint64_t(rows));
-  }
-  progress.finish();
-  return total;
 }
 
 FieldErrors measure_errors_on_disk(FieldStripReader& reader, const std::vector<int>& bands,

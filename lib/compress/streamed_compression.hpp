@@ -16,7 +16,6 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -78,7 +77,7 @@ struct StreamedCompression {
 // the ranks move their scratch rows so that each refines and builds a band of rows with as many
 // stored functions as the others; the root clusters the gathered sample, solves every F-step from
 // the summed normal equations and receives the parts: only the root's result holds the field
-// (the others' has only the bands).
+// (the others' has only the bands and, on disk, their own band's strips).
 StreamedCompression compress_streamed(FieldStripReader& reader, const CompressionOptions& options,
                                       const CompressionPlan& plan, CompressionStats& stats,
                                       StreamedTrace& trace, const std::string& scratch_name,
@@ -90,14 +89,11 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
 // its compression (StreamedCompression::bands): the root, which holds `stored` (ignored
 // elsewhere), sends each rank its band of pixel rows, each measures its band, and the root gets
 // the merged errors.
-// The report's errors of pixel rows [first_row, end_row) of the field `reader` reads, strip by
-// strip: `stored_rows(y, rows)` gives the compressed field's pixel rows [y, y + rows), as stored.
-// This process's band only (function indices from the band's first).
-FieldErrors measure_strip_errors(
-    FieldStripReader& reader, int first_row, int end_row, int strip_rows,
-    const std::function<CompressedField(int first_row, int rows)>& stored_rows,
-    int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
-    unsigned threads, bool quiet);
+FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
+                                    int strip_rows, const CompressedField& stored,
+                                    int residual_entries, double white,
+                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                    bool quiet);
 
 // measure_streamed_errors of a field whose strips are on disk: every rank (all call it) measures
 // its band from the first `band_strips` strips of its own `strips`, each stored as `storage`
@@ -108,11 +104,5 @@ FieldErrors measure_errors_on_disk(FieldStripReader& reader, const std::vector<i
                                    int residual_entries, double white,
                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
                                    bool quiet);
-
-FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
-                                    int strip_rows, const CompressedField& stored,
-                                    int residual_entries, double white,
-                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
-                                    bool quiet);
 
 }  // namespace relume
