@@ -39,7 +39,7 @@ r = json.load(open(sys.argv[1]))
 f, plan = r["field"], r["plan"]
 stream = r.get("streamed", {})
 cells = [sys.argv[2], f["width"], f["height"], f["lights"], r["float32_input_bytes"], sys.argv[3],
-         ("streamed, compressed field on disk" if plan.get("compressed_on_disk") else "streamed")
+         ("streamed (compressed field on disk)" if plan.get("compressed_on_disk") else "streamed")
          if plan["streamed"] else "in memory", plan.get("strip_rows", ""),
          plan.get("sample_rows", ""), stream.get("scratch_bytes", ""), r["seconds"],
          r["peak_memory_bytes"], f["stored_rows"], r["seconds"] / f["stored_rows"] * 1e6,
