@@ -1,29 +1,11 @@
 // Implementation of the on-disk compressed strips (see compressed_strip_file.hpp).
 #include "compress/compressed_strip_file.hpp"
 
-#include <cstring>
 #include <relume/error.hpp>
 
 #include "model/compressed_field_rows.hpp"
 
 namespace relume {
-namespace {
-
-// A strip's stored rows as the file holds them, one array after the other: function indices,
-// clusters (u32), W (f32, rows x terms), residual row offsets (u32, rows + 1), light indices
-// (u32) and values (f32).
-template <class T>
-void put(std::string& out, const T* data, std::size_t count) {
-  out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
-}
-
-template <class T>
-void take(const char*& in, T* data, std::size_t count) {
-  std::memcpy(data, in, count * sizeof(T));
-  in += count * sizeof(T);
-}
-
-}  // namespace
 
 CompressedStripFile::CompressedStripFile(const std::filesystem::path& folder,
                                          const std::string& name)
@@ -42,14 +24,14 @@ void CompressedStripFile::append(const CompressedField& strip) {
   extent.nonzeros = std::uint32_t(e.nonzeros());
   extent.first_row = shell_.height;
   extent.height = strip.height;
-  std::string bytes;
-  put(bytes, strip.stored_function.data(), rows);
-  put(bytes, strip.cluster.data(), rows);
-  put(bytes, strip.weights.data(), std::size_t(strip.weights.size()));
-  put(bytes, e.row_offsets.data(), e.row_offsets.size());
-  put(bytes, e.light_index.data(), e.nonzeros());
-  put(bytes, e.values.data(), e.nonzeros());
-  file_.append(bytes.data(), bytes.size());
+  // The stored rows one array after the other: function indices, clusters (u32), W (f32, rows x
+  // terms), residual row offsets (u32, rows + 1), light indices (u32) and values (f32).
+  file_.append(strip.stored_function.data(), rows * 4);
+  file_.append(strip.cluster.data(), rows * 4);
+  file_.append(strip.weights.data(), std::size_t(strip.weights.size()) * 4);
+  file_.append(e.row_offsets.data(), e.row_offsets.size() * 4);
+  file_.append(e.light_index.data(), e.nonzeros() * 4);
+  file_.append(e.values.data(), e.nonzeros() * 4);
   extents_.push_back(extent);
   stored_rows_ += rows;
   cluster_sizes_.resize(std::size_t(strip.clusters), 0);
@@ -80,22 +62,23 @@ CompressedField CompressedStripFile::read(std::size_t s) const {
   const Extent& extent = extents_.at(s);
   CompressedField strip = compressed_rows(shell_, extent.first_row, extent.height);
   const std::size_t rows = extent.rows, nonzeros = extent.nonzeros;
-  std::string bytes(rows * (8 + 4 * std::size_t(shell_.terms)) + (rows + 1) * 4 + nonzeros * 8,
-                    '\0');
-  file_.read_at(extent.offset, bytes.data(), bytes.size());
-  const char* in = bytes.data();
   strip.stored_function.resize(rows);
   strip.cluster.resize(rows);
   strip.weights.resize(Eigen::Index(rows), shell_.terms);
   strip.residual.row_offsets.resize(rows + 1);
   strip.residual.light_index.resize(nonzeros);
   strip.residual.values.resize(nonzeros);
-  take(in, strip.stored_function.data(), rows);
-  take(in, strip.cluster.data(), rows);
-  take(in, strip.weights.data(), std::size_t(strip.weights.size()));
-  take(in, strip.residual.row_offsets.data(), rows + 1);
-  take(in, strip.residual.light_index.data(), nonzeros);
-  take(in, strip.residual.values.data(), nonzeros);
+  std::uint64_t at = extent.offset;
+  const auto take = [&](void* data, std::size_t bytes) {
+    file_.read_at(at, data, bytes);
+    at += bytes;
+  };
+  take(strip.stored_function.data(), rows * 4);
+  take(strip.cluster.data(), rows * 4);
+  take(strip.weights.data(), std::size_t(strip.weights.size()) * 4);
+  take(strip.residual.row_offsets.data(), (rows + 1) * 4);
+  take(strip.residual.light_index.data(), nonzeros * 4);
+  take(strip.residual.values.data(), nonzeros * 4);
   return strip;
 }
 

@@ -274,14 +274,17 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
   return part;
 }
 
-// The report's errors of pixel rows [first_row, end_row) of the field `reader` reads, strip by
-// strip: `stored_rows(y, rows)` gives the compressed field's pixel rows [y, y + rows), as stored.
-// This process's band only (function indices from the band's first).
-FieldErrors measure_strip_errors(
-    FieldStripReader& reader, int first_row, int end_row, int strip_rows,
-    const std::function<CompressedField(int first_row, int rows)>& stored_rows,
-    int residual_entries, double white, const std::vector<std::uint8_t>& psnr_mask,
-    unsigned threads, bool quiet) {
+// The report's errors of the field `reader` reads, each rank (all call it) measuring its band of
+// pixel rows [bands[rank], bands[rank + 1]) strip by strip: `stored_rows(y, rows)` gives the
+// compressed field's rows [y, y + rows) of the band (y counted from the band's first row), as
+// stored. The root gets the errors merged in rank order.
+FieldErrors measure_band_errors(
+    FieldStripReader& reader, const std::vector<int>& bands, int strip_rows,
+    const std::function<CompressedField(int y, int rows)>& stored_rows, int residual_entries,
+    double white, const std::vector<std::uint8_t>& psnr_mask, unsigned threads, bool quiet) {
+  Ranks& ranks = process_ranks();
+  const int first_row = bands.at(std::size_t(ranks.rank()));
+  const int end_row = bands.at(std::size_t(ranks.rank()) + 1);
   const ReflectanceField& header = reader.header();
   const std::int64_t row_functions = std::int64_t(header.width) * header.channels;
   FieldErrors total;
@@ -297,13 +300,13 @@ FieldErrors measure_strip_errors(
       strip_mask.assign(psnr_mask.begin() + std::ptrdiff_t(y) * header.width,
                         psnr_mask.begin() + std::ptrdiff_t(y + rows) * header.width);
     merge_field_errors(total,
-                       measure_field_errors(strip, stored_rows(y, rows), residual_entries, white,
-                                            strip_mask, threads),
+                       measure_field_errors(strip, stored_rows(y - first_row, rows),
+                                            residual_entries, white, strip_mask, threads),
                        (y - first_row) * row_functions);
     progress.advance(std::uint64_t(rows));
   }
   progress.finish();
-  return total;
+  return gather_errors(ranks, std::move(total), first_row * row_functions);
 }
 
 }  // namespace
@@ -516,13 +519,10 @@ FieldErrors measure_errors_on_disk(FieldStripReader& reader, const std::vector<i
                                    int residual_entries, double white,
                                    const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
                                    bool quiet) {
-  Ranks& ranks = process_ranks();
-  const RankShare band{bands.at(std::size_t(ranks.rank())),
-                       bands.at(std::size_t(ranks.rank()) + 1)};
-  FieldErrors band_errors = measure_strip_errors(
-      reader, band.first, band.end, strip_rows,
+  return measure_band_errors(
+      reader, bands, strip_rows,
       [&](int y, int rows) {
-        const std::size_t s = std::size_t((y - band.first) / strip_rows);
+        const std::size_t s = std::size_t(y / strip_rows);
         if (s >= band_strips) throw Error("internal: the error measure's band has more strips");
         CompressedField strip = storage.store(strips.read(s));
         if (strip.height != rows)
@@ -530,9 +530,6 @@ FieldErrors measure_errors_on_disk(FieldStripReader& reader, const std::vector<i
         return strip;
       },
       residual_entries, white, psnr_mask, threads, quiet);
-  return gather_errors(ranks, std::move(band_errors),
-                       band.first * std::int64_t(reader.header().width) *
-                           reader.header().channels);
 }
 
 FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<int>& bands,
@@ -540,20 +537,14 @@ FieldErrors measure_streamed_errors(FieldStripReader& reader, const std::vector<
                                     int residual_entries, double white,
                                     const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
                                     bool quiet) {
-  Ranks& ranks = process_ranks();
-  const RankShare band{bands.at(std::size_t(ranks.rank())),
-                       bands.at(std::size_t(ranks.rank()) + 1)};
   // One process measures `stored` itself; several get their bands from the root.
   std::optional<CompressedField> received;
-  if (ranks.size() > 1) received = scatter_bands(ranks, stored, bands);
+  if (process_ranks().size() > 1) received = scatter_bands(process_ranks(), stored, bands);
   const CompressedField& stored_band = received ? *received : stored;
-  FieldErrors band_errors = measure_strip_errors(
-      reader, band.first, band.end, strip_rows,
-      [&](int y, int rows) { return compressed_rows(stored_band, y - band.first, rows); },
-      residual_entries, white, psnr_mask, threads, quiet);
-  return gather_errors(ranks, std::move(band_errors),
-                       band.first * std::int64_t(reader.header().width) *
-                           reader.header().channels);
+  return measure_band_errors(
+      reader, bands, strip_rows,
+      [&](int y, int rows) { return compressed_rows(stored_band, y, rows); }, residual_entries,
+      white, psnr_mask, threads, quiet);
 }
 
 }  // namespace relume

@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
 #include <relume/container.hpp>
 
 #include "compress/storage_precision.hpp"
@@ -25,8 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using testing::TempDir;
 
-// 11 x 9 pixels, 1 channel, 20 lights, 4 clusters of 3 terms; pixels without stored rows in the
-// last column are dark.
+// 11 x 9 pixels, 1 channel, 20 lights, 4 clusters of 3 terms; every other pixel without stored
+// rows is dark.
 CompressedField sample_field() {
   RandomFieldShape shape;
   shape.width = 11;
@@ -40,15 +39,7 @@ CompressedField sample_field() {
   shape.stored_fraction = 0.6;
   shape.seed = 11;
   CompressedField field = random_compressed_field(shape);
-  std::vector<std::uint8_t> stored_pixel(field.mask.size(), 0);
-  for (const std::uint32_t p : field.stored_function) stored_pixel[p] = 1;
-  for (int y = 0; y < field.height; ++y) {
-    const std::size_t q = std::size_t(y) * field.width + std::size_t(field.width) - 1;
-    if (stored_pixel[q]) continue;
-    field.mask[q] = 1;
-    field.dark_pixels.push_back(std::uint32_t(q));
-  }
-  field.dark.assign(std::size_t(field.channels) * field.lights, 0.002f);
+  testing::add_dark_pixels(field);
   return field;
 }
 
@@ -105,12 +96,8 @@ TEST(CompressedStripFile, StripsComeBackAsAppendedAndTheFileGoes) {
 TEST(StoredStrips, WriteTheContainerTheWholeFieldGives) {
   TempDir dir;
   const CompressedField field = sample_field();
-  // An original the compressed field approximates: its reconstruction with some noise.
-  ReflectanceField original = reconstruct_field(field);
-  std::mt19937 random(5);
-  std::normal_distribution<float> noise(0.0f, 0.01f);
-  for (Eigen::Index v = 0; v < original.values.size(); ++v)
-    original.values.data()[v] += noise(random);
+  // An original the compressed field approximates.
+  const ReflectanceField original = testing::noisy_original(field, 0.03);
   // Every third pixel row is the quantization's sample, as the build pass keeps it.
   ReflectanceField sample;
   std::vector<std::pair<int, int>> sample_rows;

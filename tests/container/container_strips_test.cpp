@@ -36,16 +36,7 @@ CompressedField field_with_dark_pixels(int width, int height, int residual, std:
   shape.stored_fraction = 0.7;
   shape.seed = seed;
   CompressedField field = random_compressed_field(shape);
-  std::vector<std::uint8_t> stored_pixel(field.mask.size(), 0);
-  for (const std::uint32_t p : field.stored_function)
-    stored_pixel[p / std::uint32_t(field.channels)] = 1;
-  for (std::size_t q = 0; q < field.mask.size(); q += 2)
-    if (!stored_pixel[q]) {
-      field.mask[q] = 1;
-      field.dark_pixels.push_back(std::uint32_t(q));
-    }
-  field.dark.assign(std::size_t(field.channels) * field.lights, 0.0f);
-  for (std::size_t v = 0; v < field.dark.size(); ++v) field.dark[v] = 0.001f * float(v % 7);
+  testing::add_dark_pixels(field);
   return field;
 }
 

@@ -1,7 +1,7 @@
 // Helpers shared by the tests: the real-data folder (RELUME_DATA or ../shared/data), a fresh
 // temporary folder per test, running commands and the built `relume` binary, a fixture for
-// suites of commands that share one folder, the relative difference of two images, and a noisy
-// original for a compressed field.
+// suites of commands that share one folder, the relative difference of two images, a noisy
+// original for a compressed field, and dark pixels for one.
 #pragma once
 
 #include <gmock/gmock.h>
@@ -87,5 +87,9 @@ ReflectanceField noisy_original(const CompressedField& compressed, double noise)
 
 // The repository's root folder (for its scripts).
 inline std::filesystem::path source_dir() { return RELUME_SOURCE_DIR; }
+
+// Every other pixel of `field` without stored rows joins the mask as a dark pixel, and the field
+// gets a dark model (small values, channels x lights).
+void add_dark_pixels(CompressedField& field);
 
 }  // namespace relume::testing
