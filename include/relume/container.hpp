@@ -38,6 +38,9 @@ struct ContainerOptions {
   // zstd-compress every section after the filter that suits it (version 2); false stores the
   // sections' raw bytes (faster to write, larger, and easy to inspect).
   bool entropy_coding = true;
+  // Threads that code the sections, several at once (0: one per core); the file is the same for
+  // any count.
+  unsigned coding_threads = 1;
   // Free-form compression parameters, a JSON object, recorded in the header. On read it comes
   // back re-serialised (same content, keys sorted).
   std::string parameters_json = "{}";

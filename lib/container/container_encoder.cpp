@@ -257,7 +257,8 @@ std::vector<StoredSection> encode_sections(const CompressedField& field,
 
 std::string encode_container(const CompressedField& field, const ContainerOptions& options,
                              const std::string& where, ContainerLayout* layout) {
-  return assemble_container(encode_sections(field, options, where), options.entropy_coding, layout);
+  return assemble_container(encode_sections(field, options, where), options.entropy_coding,
+                            options.coding_threads, layout);
 }
 
 void write_container(const fs::path& path, const CompressedField& field,

@@ -7,6 +7,7 @@
 
 #include "container/container_bytes.hpp"
 #include "container/crc32.hpp"
+#include "core/parallel.hpp"
 
 namespace relume {
 namespace {
@@ -115,20 +116,24 @@ ContainerLayout new_container_layout() {
 }
 
 std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
-                               ContainerLayout* layout_out) {
+                               unsigned threads, ContainerLayout* layout_out) {
   ContainerLayout layout = new_container_layout();
-  std::vector<CodedSection> coded;
-  std::vector<SectionCoding> codings;
-  for (StoredSection& section : sections) {
-    const std::size_t raw_bytes = section.raw.size();
-    coded.push_back(entropy_coding && section.name != "header"
-                        ? code_section(section.raw, section.element_bytes)
-                        : CodedSection{std::move(section.raw), {}});
+  std::vector<std::size_t> raw_bytes;
+  for (const StoredSection& section : sections) raw_bytes.push_back(section.raw.size());
+  std::vector<CodedSection> coded(sections.size());
+  parallel_for(sections.size(), threads, [&](std::size_t s, unsigned) {
+    StoredSection& section = sections[s];
+    coded[s] = entropy_coding && section.name != "header"
+                   ? code_section(section.raw, section.element_bytes)
+                   : CodedSection{std::move(section.raw), {}};
     std::string().swap(section.raw);  // frees it (assigning an empty string may keep the buffer)
-    const CodedSection& c = coded.back();
+  });
+  std::vector<SectionCoding> codings;
+  for (std::size_t s = 0; s < sections.size(); ++s) {
+    const CodedSection& c = coded[s];
     codings.push_back(c.coding);
-    layout.sections.push_back({std::string(section.name), layout.file_bytes, c.bytes.size(),
-                               raw_bytes, crc32(c.bytes), c.coding.describe()});
+    layout.sections.push_back({std::string(sections[s].name), layout.file_bytes, c.bytes.size(),
+                               raw_bytes[s], crc32(c.bytes), c.coding.describe()});
     layout.file_bytes += c.bytes.size();
   }
   std::string file = encode_preamble(layout, codings);

@@ -25,10 +25,10 @@ struct StoredSection {
 };
 
 // The whole file in the current version: every section coded (code_section) unless
-// `entropy_coding` is false or it is the header; `layout`, when given, receives the table. Each
-// section's raw bytes are let go once it is coded.
+// `entropy_coding` is false or it is the header, `threads` sections at once; `layout`, when
+// given, receives the table. Each section's raw bytes are let go once it is coded.
 std::string assemble_container(std::vector<StoredSection> sections, bool entropy_coding,
-                               ContainerLayout* layout);
+                               unsigned threads, ContainerLayout* layout);
 
 // An empty layout of the current version: its preamble's size, no sections yet (file_bytes is
 // where the first section starts).

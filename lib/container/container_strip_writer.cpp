@@ -91,10 +91,17 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
                              value_bytes(stored_residual_precision(shell, options)));
   std::vector<std::uint64_t>().swap(stored_functions);
   ContainerLayout layout = new_container_layout();
-  std::uint64_t raw_bytes = 0;
-  for (const StoredSection& section : sections) raw_bytes += section.raw.size();
-  for (const DiskFile& file : raw) raw_bytes += file.size();
-  ProgressReporter coding(title + ": coding sections (raw bytes)", raw_bytes);
+  // The row sections coded from their files first, all at once.
+  std::vector<const DiskFile*> raw_files(raw.size());
+  std::vector<int> element_bytes(raw.size());
+  for (const StoredSection& section : sections)
+    if (const int from_file = row_section_index(section.name); from_file >= 0) {
+      raw_files[std::size_t(from_file)] = &raw[std::size_t(from_file)];
+      element_bytes[std::size_t(from_file)] = section.element_bytes;
+    }
+  std::vector<FileCodedSection> coded_rows =
+      code_section_files(raw_files, element_bytes, options.entropy_coding, scratch_folder,
+                         options.coding_threads, title + ": coding sections (raw bytes x filters)");
   write_atomically(path, [&](const fs::path& temp) {
     DiskFile out = DiskFile::create(temp, "container");
     const std::string placeholder(layout.preamble_bytes, '\0');
@@ -105,12 +112,11 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
       const int from_file = row_section_index(section.name);
       if (from_file >= 0) {
         const DiskFile& file = raw[std::size_t(from_file)];
-        const FileCodedSection coded = append_coded_section(
-            file, section.element_bytes, options.entropy_coding, scratch_folder, out);
+        FileCodedSection& coded = coded_rows[std::size_t(from_file)];
+        append_coded_section(file, coded, out);
         codings.push_back(coded.coding);
         layout.sections.push_back({std::string(section.name), offset, coded.bytes, file.size(),
                                    coded.crc32, coded.coding.describe()});
-        coding.advance(file.size());
         continue;
       }
       const std::size_t section_bytes = section.raw.size();
@@ -121,14 +127,12 @@ ContainerLayout write_container_strips(const fs::path& path, const CompressedFie
       codings.push_back(coded.coding);
       layout.sections.push_back({std::string(section.name), offset, coded.bytes.size(),
                                  section_bytes, crc32(coded.bytes), coded.coding.describe()});
-      coding.advance(section_bytes);
     }
     layout.file_bytes = out.size();
     const std::string preamble = encode_preamble(layout, codings);
     out.write_at(0, preamble.data(), preamble.size());
     out.close();
   });
-  coding.finish();
   return layout;
 }
 

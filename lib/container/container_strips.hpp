@@ -24,9 +24,10 @@ struct CompressedFieldStrips {
   std::function<CompressedField(std::size_t s)> strip;
 };
 
-// Writes `strips` to `path`; raw sections are kept in `scratch_folder` while it writes. Returns
-// the layout written. Throws Error as write_container does (naming the strip's pixel rows for an
-// inconsistent or unstorable strip); nothing is left at `path` or in the scratch folder then.
+// Writes `strips` to `path`; raw sections are kept in `scratch_folder` while it writes, and coded
+// on options.coding_threads threads. Returns the layout written. Throws Error as write_container
+// does (naming the strip's pixel rows for an inconsistent or unstorable strip); nothing is left at
+// `path` or in the scratch folder then.
 ContainerLayout write_container_strips(const std::filesystem::path& path,
                                        const CompressedFieldStrips& strips,
                                        const ContainerOptions& options,

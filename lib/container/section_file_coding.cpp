@@ -4,13 +4,15 @@
 #include <zstd.h>
 
 #include <functional>
-#include <optional>
+#include <mutex>
 #include <relume/error.hpp>
 #include <string>
 #include <vector>
 
 #include "container/crc32.hpp"
 #include "core/interruption.hpp"
+#include "core/parallel.hpp"
+#include "core/progress.hpp"
 
 namespace relume {
 namespace {
@@ -87,33 +89,68 @@ void zstd_file(const DiskFile& raw, SectionFilter filter, int element_bytes, Dis
 
 }  // namespace
 
-FileCodedSection append_coded_section(const DiskFile& raw, int element_bytes, bool entropy_coding,
-                                      const std::filesystem::path& scratch_folder, DiskFile& out) {
-  if (raw.size() % std::uint64_t(element_bytes) != 0)
-    throw Error("internal: a section of " + std::to_string(raw.size()) + " bytes is not made of " +
-                std::to_string(element_bytes) + "-byte numbers");
-  // As code_section: the smallest coding, raw unless one is smaller.
-  std::optional<DiskFile> best;
-  FileCodedSection result;
-  result.bytes = raw.size();
-  if (entropy_coding)
-    for (const SectionFilter filter : candidate_filters(element_bytes)) {
-      DiskFile coded = DiskFile::temporary(
-          scratch_folder, raw.path().filename().string() + ".coded" + std::to_string(int(filter)),
-          "coded section");
-      zstd_file(raw, filter, element_bytes, coded);
-      if (coded.size() >= result.bytes) continue;
-      result.bytes = coded.size();
-      result.coding = {true, filter, element_bytes};
-      best.reset();
-      best.emplace(std::move(coded));
-    }
-  const DiskFile& chosen = best ? *best : raw;
-  filtered_bytes(chosen, SectionFilter::none, 1, [&](const char* data, std::size_t bytes) {
-    result.crc32 = crc32(data, bytes, result.crc32);
+std::vector<FileCodedSection> code_section_files(const std::vector<const DiskFile*>& raws,
+                                                 const std::vector<int>& element_bytes,
+                                                 bool entropy_coding,
+                                                 const std::filesystem::path& scratch_folder,
+                                                 unsigned threads, const std::string& title) {
+  struct Candidate {
+    std::size_t section = 0;
+    std::size_t order = 0;  // among its section's candidates
+    SectionFilter filter = SectionFilter::none;
+  };
+  std::vector<FileCodedSection> sections(raws.size());
+  std::vector<Candidate> candidates;
+  std::uint64_t candidate_bytes = 0;
+  for (std::size_t i = 0; i < raws.size(); ++i) {
+    if (raws[i]->size() % std::uint64_t(element_bytes[i]) != 0)
+      throw Error("internal: a section of " + std::to_string(raws[i]->size()) +
+                  " bytes is not made of " + std::to_string(element_bytes[i]) + "-byte numbers");
+    sections[i].bytes = raws[i]->size();
+    if (!entropy_coding) continue;
+    const std::vector<SectionFilter> filters = candidate_filters(element_bytes[i]);
+    for (std::size_t order = 0; order < filters.size(); ++order)
+      candidates.push_back({i, order, filters[order]});
+    candidate_bytes += raws[i]->size() * filters.size();
+  }
+  // The best candidate so far of each section, by size and then order: the one a sequential
+  // search keeps, whatever order the threads finish in.
+  std::vector<std::size_t> best_order(raws.size(), 0);
+  std::mutex best_mutex;
+  ProgressReporter progress(title, candidate_bytes);
+  parallel_for(candidates.size(), threads, [&](std::size_t c, unsigned) {
+    const Candidate& candidate = candidates[c];
+    const DiskFile& raw = *raws[candidate.section];
+    DiskFile coded = DiskFile::temporary(
+        scratch_folder,
+        raw.path().filename().string() + ".coded" + std::to_string(int(candidate.filter)),
+        "coded section");
+    const int width = element_bytes[candidate.section];
+    zstd_file(raw, candidate.filter, width, coded);
+    progress.advance(raw.size());
+    const std::lock_guard lock(best_mutex);
+    FileCodedSection& section = sections[candidate.section];
+    const bool better =
+        coded.size() < section.bytes || (section.coded && coded.size() == section.bytes &&
+                                         candidate.order < best_order[candidate.section]);
+    if (!better) return;
+    section.bytes = coded.size();
+    section.coding = {true, candidate.filter, width};
+    best_order[candidate.section] = candidate.order;
+    section.coded.reset();
+    section.coded.emplace(std::move(coded));
+  });
+  progress.finish();
+  return sections;
+}
+
+void append_coded_section(const DiskFile& raw, FileCodedSection& section, DiskFile& out) {
+  section.crc32 = 0;
+  const DiskFile& stored = section.coded ? *section.coded : raw;
+  filtered_bytes(stored, SectionFilter::none, 1, [&](const char* data, std::size_t bytes) {
+    section.crc32 = crc32(data, bytes, section.crc32);
     out.append(data, bytes);
   });
-  return result;
 }
 
 }  // namespace relume

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 #include "container/section_coding.hpp"
 #include "core/disk_file.hpp"
@@ -14,14 +16,24 @@ namespace relume {
 
 struct FileCodedSection {
   SectionCoding coding;
-  std::uint64_t bytes = 0;  // as stored
-  std::uint32_t crc32 = 0;  // of the stored bytes
+  std::uint64_t bytes = 0;        // as stored
+  std::uint32_t crc32 = 0;        // of the stored bytes (append_coded_section sets it)
+  std::optional<DiskFile> coded;  // the stored bytes when coded; else the raw file's are stored
 };
 
-// Appends the section whose raw bytes are all of `raw` (numbers of `element_bytes` bytes) to
-// `out`, coded; `entropy_coding` false stores it raw. Each candidate coding is written to a
-// temporary file in `scratch_folder` and the smallest is copied.
-FileCodedSection append_coded_section(const DiskFile& raw, int element_bytes, bool entropy_coding,
-                                      const std::filesystem::path& scratch_folder, DiskFile& out);
+// Every section whose raw bytes are all of *raws[i] (numbers of element_bytes[i] bytes) coded as
+// code_section would code it: the smallest of raw and zstd after each candidate filter (the
+// first of equal ones); `entropy_coding` false keeps them raw. Each candidate is coded into a
+// temporary file in `scratch_folder`, the candidates of all the sections on `threads` threads at
+// once; a file that is not the smallest of its section so far is dropped as soon as it is done.
+// Progress is reported as `title`.
+std::vector<FileCodedSection> code_section_files(const std::vector<const DiskFile*>& raws,
+                                                 const std::vector<int>& element_bytes,
+                                                 bool entropy_coding,
+                                                 const std::filesystem::path& scratch_folder,
+                                                 unsigned threads, const std::string& title);
+
+// Appends the stored bytes of `section`, coded from `raw` by code_section_files, to `out`.
+void append_coded_section(const DiskFile& raw, FileCodedSection& section, DiskFile& out);
 
 }  // namespace relume

@@ -63,9 +63,10 @@ std::string contents(const std::filesystem::path& path) {
   return encode_container(field, stored, "re-encoding " + path.string(), nullptr);
 }
 
-// Writes `field` whole and in strips of each height: the same file, byte for byte when
-// `same_bytes` (zstd may code a section given in pieces a few bytes differently from the same
-// section given whole: then the same contents, coded alike, within 0.1% of the size).
+// Writes `field` whole and in strips of each height, the strips' sections coded on three threads:
+// the same file, byte for byte when `same_bytes` (zstd may code a section given in pieces a few
+// bytes differently from the same section given whole: then the same contents, coded alike,
+// within 0.1% of the size).
 void expect_same_container_for_every_strip_height(const CompressedField& field,
                                                   const ContainerOptions& options,
                                                   const std::vector<int>& heights,
@@ -74,11 +75,13 @@ void expect_same_container_for_every_strip_height(const CompressedField& field,
   write_container(dir / "whole.relume", field, options);
   const std::string whole = read_file(dir / "whole.relume");
   const ContainerLayout whole_layout = describe_container(dir / "whole.relume");
+  ContainerOptions threaded = options;
+  threaded.coding_threads = 3;
   for (const int rows : heights) {
     SCOPED_TRACE("strips of " + std::to_string(rows) + " pixel rows");
     const std::filesystem::path path = dir / ("strips_" + std::to_string(rows) + ".relume");
     const ContainerLayout layout =
-        write_container_strips(path, strips_of(field, rows), options, dir / "scratch");
+        write_container_strips(path, strips_of(field, rows), threaded, dir / "scratch");
     EXPECT_TRUE(std::filesystem::is_empty(dir / "scratch"));  // the raw sections are gone
     EXPECT_EQ(layout.file_bytes, std::filesystem::file_size(path));
     if (same_bytes) {

@@ -136,6 +136,17 @@ TEST(Container, Float32RoundTripIsBitExact) {
             nlohmann::json::parse(options.parameters_json));
 }
 
+TEST(Container, TheFileIsTheSameWhateverTheThreadsThatCodeItsSections) {
+  TempDir dir;
+  const CompressedField field = sample_field();
+  ContainerOptions options;
+  write_container(dir / "one.relume", field, options);
+  options.coding_threads = 4;
+  write_container(dir / "four.relume", field, options);
+  EXPECT_TRUE(read_file(dir / "one.relume") == read_file(dir / "four.relume"));
+  expect_identical(field, read_container(dir / "four.relume"));
+}
+
 TEST(Container, HaarTransformAndOneChannelRoundTrip) {
   TempDir dir;
   RandomFieldShape shape;

@@ -63,7 +63,7 @@ std::string crafted_container(std::int64_t width, std::int64_t height, const flo
     if (name == "dark_pixels") section.raw = dark_pixels.data();
     sections.push_back(section);
   }
-  return assemble_container(sections, /*entropy_coding=*/false, nullptr);
+  return assemble_container(sections, /*entropy_coding=*/false, /*threads=*/1, nullptr);
 }
 
 const float up[3] = {0, 1, 0};
