@@ -246,6 +246,8 @@ nlohmann::ordered_json streamed_json(const StreamedTrace& trace) {
           {"rank_compute_seconds", trace.rank_compute_seconds},
           {"rank_bytes_sent", trace.rank_bytes_sent},
           {"sample_rows", trace.sample_rows},
+          {"sample_clustering_threads", trace.sample_clustering_threads},
+          {"sample_clustering_cores", trace.sample_clustering_cores},
           {"scratch_bytes", trace.scratch_bytes},
           {"passes", passes},
           {"seconds",
@@ -397,27 +399,36 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   }
   const double quantize_seconds = seconds_since(quantize_start);
 
+  CompressionRun run;
+  run.threads = resolve_thread_count(threads);
+  // A streamed run measures its error before the root writes: the other ranks measure their bands
+  // meanwhile, then wait while the root writes on their cores too.
+  auto error_start = Clock::now();
+  if (plan.streamed) run.errors = measure_streamed(stored);
+  double error_seconds = seconds_since(error_start);
+
   const auto write_start = Clock::now();
   container.parameters_json = compression_parameters(options, stats, arguments.solver).dump();
   ContainerLayout layout;
-  if (stored_on_disk) {
-    layout = write_container_strips(output, *stored_on_disk, container, plan.scratch_folder);
-  } else {
-    write_container(output, stored, container);
-    layout = describe_container(output);
+  {
+    const LocalCoresLease lease(ranks);
+    container.coding_threads = lease.threads(threads);
+    if (stored_on_disk) {
+      layout = write_container_strips(output, *stored_on_disk, container, plan.scratch_folder);
+    } else {
+      write_container(output, stored, container);
+      layout = describe_container(output);
+    }
   }
   fs::remove(checkpoint);
   const double write_seconds = seconds_since(write_start);
 
-  const auto error_start = Clock::now();
-  CompressionRun run;
-  run.threads = resolve_thread_count(threads);
-  if (plan.streamed) {
-    run.errors = measure_streamed(stored);
-  } else {
+  if (!plan.streamed) {
+    error_start = Clock::now();
     run.errors = measure_field_errors(*field, stored, stats.residual_entries, arguments.psnr_white,
                                       psnr_mask, threads);
     float32_masked = relative_error(*field, compressed, true, all_residual_entries, threads);
+    error_seconds = seconds_since(error_start);
   }
   run.input = input;
   run.output = output.string();
@@ -430,7 +441,7 @@ nlohmann::ordered_json compress_one(const std::string& input, const fs::path& ou
   run.extra_seconds = {{"load", load_seconds},
                        {"quantize", quantize_seconds},
                        {"write", write_seconds},
-                       {"error_measure", seconds_since(error_start)}};
+                       {"error_measure", error_seconds}};
   run.solver = arguments.solver;
   run.assignment_device = opencl ? opencl->device_label() : "cpu";
   run.psnr_white = arguments.psnr_white;

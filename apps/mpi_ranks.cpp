@@ -1,12 +1,19 @@
 // The MPI ranks of `mpirun -n N relume ...` (see mpi_ranks.hpp). Messages go in chunks of at most
 // 256 MB (MPI counts are ints); every exchange is timed and its bytes counted for the report.
+// Every exchange starts with all ranks arriving at a barrier that sleeps between polls: OpenMPI's
+// blocking calls poll without pause, so a rank waiting for the root (while the root clusters the
+// sample on the cores of every rank on its machine, or writes the file) would hold a core the
+// root could use. Once all have arrived, the transfers run blocking, at full speed.
 #include "mpi_ranks.hpp"
 
 #include <mpi.h>
+#include <sched.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <relume/error.hpp>
+#include <thread>
 
 #include "core/elapsed_time.hpp"
 #include "core/ranks.hpp"
@@ -24,14 +31,29 @@ class MpiRanks final : public Ranks {
     MPI_Comm local;
     MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &local);
     MPI_Comm_size(local, &local_size_);
+    // This rank's cores (mpirun usually binds it to one) and those of every rank on its machine.
+    CPU_ZERO(&own_cores_);
+    CPU_ZERO(&local_cores_);
+    if (sched_getaffinity(0, sizeof own_cores_, &own_cores_) == 0) {
+      std::vector<cpu_set_t> cores(static_cast<std::size_t>(local_size_));
+      MPI_Allgather(&own_cores_, sizeof(cpu_set_t), MPI_BYTE, cores.data(), sizeof(cpu_set_t),
+                    MPI_BYTE, local);
+      for (cpu_set_t& rank_cores : cores) CPU_OR(&local_cores_, &local_cores_, &rank_cores);
+    }
     MPI_Comm_free(&local);
   }
   int rank() const override { return rank_; }
   int size() const override { return size_; }
   int local_size() const override { return local_size_; }
 
+  void use_local_cores(bool all) override {
+    if (CPU_COUNT(&own_cores_) > 0)
+      sched_setaffinity(0, sizeof(cpu_set_t), all ? &local_cores_ : &own_cores_);
+  }
+
   void sum_to_root(double* values, std::size_t count) override {
     const Timer timer(this);
+    arrive();
     for (std::size_t done = 0; done < count;) {
       const int n = int(std::min(count - done, chunk_bytes / sizeof(double)));
       MPI_Reduce(rank_ == 0 ? MPI_IN_PLACE : values + done, values + done, n, MPI_DOUBLE, MPI_SUM,
@@ -43,6 +65,7 @@ class MpiRanks final : public Ranks {
 
   void sum_everywhere(double* values, std::size_t count) override {
     const Timer timer(this);
+    arrive();
     for (std::size_t done = 0; done < count;) {
       const int n = int(std::min(count - done, chunk_bytes / sizeof(double)));
       MPI_Allreduce(MPI_IN_PLACE, values + done, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
@@ -53,6 +76,7 @@ class MpiRanks final : public Ranks {
 
   void broadcast(std::string& bytes) override {
     const Timer timer(this);
+    arrive();
     std::uint64_t size = bytes.size();
     MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
     bytes.resize(size);
@@ -66,6 +90,7 @@ class MpiRanks final : public Ranks {
 
   std::vector<std::string> gather_to_root(const std::string& bytes) override {
     const Timer timer(this);
+    arrive();
     std::vector<std::string> parts;
     if (rank_ != 0) {
       send(bytes, 0);
@@ -78,6 +103,7 @@ class MpiRanks final : public Ranks {
 
   std::string scatter_from_root(std::vector<std::string> parts) override {
     const Timer timer(this);
+    arrive();
     if (rank_ != 0) return receive(0);
     for (int to = 1; to < size_; ++to) send(parts.at(std::size_t(to)), to);
     return std::move(parts.at(0));
@@ -87,6 +113,7 @@ class MpiRanks final : public Ranks {
   // before, both at once, so that no two ranks wait on each other.
   std::vector<std::string> exchange(std::vector<std::string> to) override {
     const Timer timer(this);
+    arrive();
     std::vector<std::string> from(static_cast<std::size_t>(size_));
     from[std::size_t(rank_)] = std::move(to.at(std::size_t(rank_)));
     for (int d = 1; d < size_; ++d) {
@@ -140,6 +167,23 @@ class MpiRanks final : public Ranks {
     return bytes;
   }
 
+  // Returns once every rank has called it: polls for 50 microseconds (ranks in step meet within
+  // them), then sleeps between polls, each sleep twice the last, up to a millisecond.
+  static void arrive() {
+    using namespace std::chrono_literals;
+    MPI_Request request;
+    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    const auto start = std::chrono::steady_clock::now();
+    auto pause = 10us;
+    for (int done = 0;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) return;
+      if (std::chrono::steady_clock::now() - start < 50us) continue;
+      std::this_thread::sleep_for(pause);
+      pause = std::min<std::chrono::microseconds>(2 * pause, 1000us);
+    }
+  }
+
   // Adds the time of one exchange to exchange_seconds_.
   struct Timer {
     explicit Timer(MpiRanks* ranks) : ranks_(ranks), start_(Clock::now()) {}
@@ -149,6 +193,7 @@ class MpiRanks final : public Ranks {
   };
 
   int rank_ = 0, size_ = 1, local_size_ = 1;
+  cpu_set_t own_cores_, local_cores_;
   std::uint64_t sent_ = 0;
   double exchange_seconds_ = 0;
 };

@@ -7,7 +7,6 @@
 #include <memory>
 #include <optional>
 #include <relume/error.hpp>
-#include <thread>
 
 #include "compress/cluster_basis.hpp"
 #include "compress/compressed_strip_file.hpp"
@@ -401,13 +400,13 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
         gather_sample(ranks, sample_rows(*scratch, row_start[std::size_t(begin_row)], stride));
     trace.sample_rows = sample.rows();
     if (ranks.root()) {
-      // The other ranks on this machine wait for the bases: their threads cluster the sample too
-      // (the model does not depend on the thread count).
+      // The other ranks on this machine wait for the bases: their threads, on their cores,
+      // cluster the sample too (the model does not depend on the thread count).
+      const LocalCoresLease lease(ranks);
       CompressionOptions sample_options = options;
-      if (clustering.threads > 0)
-        sample_options.clustering.threads =
-            std::min(clustering.threads * unsigned(ranks.local_size()),
-                     std::max(clustering.threads, std::thread::hardware_concurrency()));
+      sample_options.clustering.threads = lease.threads(clustering.threads);
+      trace.sample_clustering_cores = lease.cores();
+      trace.sample_clustering_threads = resolve_thread_count(sample_options.clustering.threads);
       ClusterModel model =
           cluster_prepared_rows(sample, lights, sample_options, stats, hook, resume);
       bases.terms = model.terms;

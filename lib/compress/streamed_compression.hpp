@@ -39,6 +39,9 @@ struct StreamedPass {
 
 struct StreamedTrace {
   std::size_t sample_rows = 0;
+  // The threads that clustered the sample at the root, and the cores they could run on (the root
+  // borrows those of the ranks on its machine, which wait for its bases).
+  unsigned sample_clustering_threads = 0, sample_clustering_cores = 0;
   std::uint64_t scratch_bytes = 0;  // over all ranks
   int strips = 0;
   double read_seconds = 0, sample_clustering_seconds = 0, refine_seconds = 0, build_seconds = 0;

@@ -1,6 +1,8 @@
 // Implementation of the dynamic parallel loop declared in parallel.hpp.
 #include "core/parallel.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -19,6 +21,13 @@ unsigned resolve_thread_count(unsigned requested) {
                 std::to_string(max_worker_threads) + " worker threads relume runs at most");
   if (requested > 0) return requested;
   return std::max(1u, std::thread::hardware_concurrency());
+}
+
+unsigned cores_of_this_thread() {
+  cpu_set_t cores;
+  if (sched_getaffinity(0, sizeof cores, &cores) != 0)
+    return std::max(1u, std::thread::hardware_concurrency());
+  return unsigned(CPU_COUNT(&cores));
 }
 
 void parallel_for(std::size_t count, unsigned threads,

@@ -18,6 +18,9 @@ inline constexpr unsigned max_worker_threads = 1024;
 // Error naming the value when it is above max_worker_threads.
 unsigned resolve_thread_count(unsigned requested);
 
+// The cores the calling thread may run on (its affinity: mpirun binds a rank to its own cores).
+unsigned cores_of_this_thread();
+
 // Calls body(index, worker) for every index; worker is in [0, threads) and lets a body keep
 // per-thread state (for example one GLPK problem per worker).
 void parallel_for(std::size_t count, unsigned threads,

@@ -1,6 +1,10 @@
 // The process's ranks (see ranks.hpp): one process unless the command installs MPI's.
 #include "core/ranks.hpp"
 
+#include <algorithm>
+
+#include "core/parallel.hpp"
+
 namespace relume {
 namespace {
 
@@ -8,6 +12,16 @@ Ranks single_process;
 Ranks* installed = &single_process;
 
 }  // namespace
+
+LocalCoresLease::LocalCoresLease(Ranks& ranks) : ranks_(ranks) {
+  ranks_.use_local_cores(true);
+  cores_ = cores_of_this_thread();
+}
+
+unsigned LocalCoresLease::threads(unsigned threads) const {
+  if (threads == 0) return 0;
+  return std::min(threads * unsigned(ranks_.local_size()), std::max(threads, cores_));
+}
 
 RankShare rank_share(const Ranks& ranks, int count, int rank) {
   return {int(std::int64_t(count) * rank / ranks.size()),

@@ -20,6 +20,10 @@ class Ranks {
   virtual int size() const { return 1; }
   // The ranks on this machine, this one included: they share its memory.
   virtual int local_size() const { return 1; }
+  // true: this thread, and the threads it starts, may run on the cores of every rank on its
+  // machine (under mpirun each rank is usually bound to its own), while the others wait for it;
+  // false: on this rank's own again.
+  virtual void use_local_cores(bool /*all*/) {}
   bool root() const { return rank() == 0; }
 
   // Element-wise sums over the ranks: into the root's `values` (the others' are left as they
@@ -42,6 +46,26 @@ class Ranks {
   // (sending, receiving and waiting for the others).
   virtual std::uint64_t bytes_sent() const { return 0; }
   virtual double exchange_seconds() const { return 0; }
+};
+
+// use_local_cores(true) for its lifetime: the root clusters the sample and writes the file on
+// the cores of the ranks that wait for it.
+class LocalCoresLease {
+ public:
+  explicit LocalCoresLease(Ranks& ranks);
+  ~LocalCoresLease() { ranks_.use_local_cores(false); }
+  LocalCoresLease(const LocalCoresLease&) = delete;
+  LocalCoresLease& operator=(const LocalCoresLease&) = delete;
+
+  // The cores this thread may run on now.
+  unsigned cores() const { return cores_; }
+  // The threads to run for ranks of `threads` each (0: every core, returned as it is): as many for
+  // every rank on this machine, at most the cores and no fewer than `threads`.
+  unsigned threads(unsigned threads) const;
+
+ private:
+  Ranks& ranks_;
+  unsigned cores_ = 1;
 };
 
 // Rank `rank`'s share [first, end) of `count` items split over the ranks in rank order.

@@ -2,7 +2,8 @@
 // 3 ranks on loopback compress one field (streamed) within 1% of one process's error, to the
 // same container and, measured band by band, the same errors as one rank, a rank count gives the
 // same bytes every time, the report says how the ranks shared the work (with the compressed
-// field gathered in memory, and with it on disk, each rank's strips sent to the root), and a
+// field gathered in memory, and with it on disk, each rank's strips sent to the root), the root
+// clusters the sample on the cores of the ranks bound beside it (which wait for it), and a
 // failure on one rank (a truncated image under its rows only) ends every rank with that rank's
 // message and leaves no output.
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <thread>
 
 #include "core/atomic_file.hpp"
 #include "support/test_support.hpp"
@@ -49,16 +51,16 @@ class MpiCompress : public ::testing::Test {
   }
 
   // `[mpirun -n ranks] relume compress dir/scene -o dir/name.relume --report dir/name.json
-  // [extra]`; ranks 0: without mpirun. The memory limit makes one process stream too (the 64x64
-  // field is 1.5 MB as float32, 3.8 MB to compress in memory), so that all compare the same
-  // method.
+  // [extra]` (`launch`: more options of mpirun); ranks 0: without mpirun. The memory limit makes
+  // one process stream too (the 64x64 field is 1.5 MB as float32, 3.8 MB to compress in memory), so
+  // that all compare the same method.
   testing::CommandResult compress(int ranks, const std::string& name,
-                                  const std::string& scene = "scene",
-                                  const std::string& extra = "") {
-    const std::string relume = ranks == 0 ? std::string(RELUME_BINARY)
-                                          : std::string(mpirun) +
-                                                " --allow-run-as-root --oversubscribe -n " +
-                                                std::to_string(ranks) + " " + RELUME_BINARY;
+                                  const std::string& scene = "scene", const std::string& extra = "",
+                                  const std::string& launch = "") {
+    const std::string relume =
+        ranks == 0 ? std::string(RELUME_BINARY)
+                   : std::string(mpirun) + " --allow-run-as-root --oversubscribe " + launch +
+                         " -n " + std::to_string(ranks) + " " + RELUME_BINARY;
     return testing::run_command(
         relume + " -q --memory-limit 3M compress '" + (dir_ / scene).string() + "' -o '" +
         (dir_ / (name + ".relume")).string() + "' --report '" + (dir_ / (name + ".json")).string() +
@@ -138,6 +140,23 @@ TEST_F(MpiCompress, RanksShareTheWorkAndReachTheSingleProcessQuality) {
 
 TEST_F(MpiCompress, RanksBuildTheCompressedFieldOnDiskAndTheRootGathersIt) {
   expect_ranks_share_the_work("few_lights", "--residual 8", true);
+}
+
+TEST_F(MpiCompress, TheRootClustersTheSampleOnTheCoresOfTheRanksBesideIt) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "needs two cores to bind two ranks";
+  // Each rank bound to one core, one thread each: the root's sample clustering runs on both.
+  const auto two = compress(2, "bound2", "scene", "", "--bind-to core");
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  const nlohmann::json streamed = read_json(dir_ / "bound2.json")["streamed"];
+  EXPECT_EQ(streamed["sample_clustering_cores"].get<int>(), 2);
+  EXPECT_EQ(streamed["sample_clustering_threads"].get<int>(), 2);
+  const auto one = compress(1, "bound1", "scene", "", "--bind-to core");
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const nlohmann::json alone = read_json(dir_ / "bound1.json")["streamed"];
+  EXPECT_EQ(alone["sample_clustering_cores"].get<int>(), 1);
+  EXPECT_EQ(alone["sample_clustering_threads"].get<int>(), 1);
+  EXPECT_TRUE(read_file(dir_ / "bound2.relume") == read_file(dir_ / "bound1.relume"))
+      << "the model does not depend on the threads that clustered the sample";
 }
 
 TEST_F(MpiCompress, AFailureOnOneRankEndsEveryRankWithItsMessage) {
