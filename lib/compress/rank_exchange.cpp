@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <relume/container.hpp>
+#include <relume/error.hpp>
 
 #include "container/container.hpp"
 #include "container/container_bytes.hpp"
@@ -121,6 +122,33 @@ void move_scratch_rows(Ranks& ranks, const ScratchRows& from,
       to.append_block(block);
     }
   }
+}
+
+std::vector<std::int32_t> move_assignment(Ranks& ranks, const std::vector<std::int32_t>& assignment,
+                                          const std::vector<std::uint64_t>& held,
+                                          const std::vector<std::uint64_t>& wanted) {
+  const std::size_t size = std::size_t(ranks.size()), own = std::size_t(ranks.rank());
+  std::vector<std::string> messages(size);
+  for (std::size_t r = 0; r < size; ++r) {
+    const std::uint64_t first = std::max(wanted[r], held[own]);
+    const std::uint64_t last = std::min(wanted[r + 1], held[own + 1]);
+    ByteWriter out;
+    if (first < last) put_array(out, assignment.data() + (first - held[own]), last - first);
+    messages[r] = out.take();
+  }
+  // This rank's wanted rows come from consecutive ranks in rank order.
+  const std::vector<std::string> received = ranks.exchange(std::move(messages));
+  std::vector<std::int32_t> moved;
+  for (std::size_t r = 0; r < size; ++r) {
+    if (received[r].empty()) continue;
+    ByteReader in(received[r], "the clusters of rank " + std::to_string(r));
+    const std::vector<std::int32_t> part = take_array<std::int32_t>(in);
+    moved.insert(moved.end(), part.begin(), part.end());
+  }
+  if (moved.size() != wanted[own + 1] - wanted[own])
+    throw Error("internal: rank " + std::to_string(own) + " got " + std::to_string(moved.size()) +
+                " clusters for " + std::to_string(wanted[own + 1] - wanted[own]) + " rows");
+  return moved;
 }
 
 WorkingRows gather_sample(Ranks& ranks, const WorkingRows& local) {

@@ -1,5 +1,6 @@
 // What the ranks of a distributed streamed compression (core/ranks.hpp) exchange, packed into
-// bytes: scratch rows (moved between ranks so that their bands hold even work), every rank's
+// bytes: scratch rows (moved between ranks so that their bands hold even work) and the rows'
+// clusters (moved again for the build pass's bands), every rank's
 // share of the clustering sample (gathered at the root, which clusters it),
 // the bases (broadcast by the root after every solve), the F-step's sums (added up at the root),
 // every rank's part of the compressed field (gathered at the root, which writes the file; on disk,
@@ -41,6 +42,13 @@ void move_scratch_rows(Ranks& ranks, const ScratchRows& from,
                        const std::vector<std::uint64_t>& held,
                        const std::vector<std::uint64_t>& wanted, std::size_t block_rows,
                        ScratchRows& to);
+
+// Moves every stored row's cluster between the ranks (all call it), numbered as in
+// move_scratch_rows: rank r holds the clusters of rows [held[r], held[r + 1]) in `assignment` and
+// gets those of rows [wanted[r], wanted[r + 1]), in order.
+std::vector<std::int32_t> move_assignment(Ranks& ranks, const std::vector<std::int32_t>& assignment,
+                                          const std::vector<std::uint64_t>& held,
+                                          const std::vector<std::uint64_t>& wanted);
 
 // One rank's part of the build pass: its rows of the compressed field (float32) and what the
 // root needs with them.

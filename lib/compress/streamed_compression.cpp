@@ -364,29 +364,44 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   stats.clusters_asked = clustering.clusters;
   trace.read_seconds = stats.prepare_seconds = seconds_since(start);
 
-  // The later passes' bands hold as many stored functions as whole pixel rows allow (dark and
+  // The refinement passes' bands hold as many stored functions as whole pixel rows allow (dark and
   // masked pixels store none): the ranks move their scratch rows to match.
   const std::size_t block_rows =
       std::max<std::size_t>(1, std::size_t(plan.strip_rows) * header.width * header.channels);
-  StreamedCompression result;
-  result.bands = weighted_shares(stored_per_row, ranks.size());
-  const int begin_row = result.bands[std::size_t(ranks.rank())];
-  const int end_row = result.bands[std::size_t(ranks.rank()) + 1];
+  // The first stored function of every band of `bands`, and the field's end.
+  const auto band_starts = [&](const std::vector<int>& bands) {
+    std::vector<std::uint64_t> starts;
+    for (const int y : bands) starts.push_back(row_start[std::size_t(y)]);
+    return starts;
+  };
+  const std::vector<int> refine_bands = weighted_shares(stored_per_row, ranks.size());
+  const std::vector<std::uint64_t> refine_starts = band_starts(refine_bands);
+  const int begin_row = refine_bands[std::size_t(ranks.rank())];
   for (int r = 0; r < ranks.size(); ++r)
-    trace.rank_stored_rows.push_back(row_start[std::size_t(result.bands[std::size_t(r) + 1])] -
-                                     row_start[std::size_t(result.bands[std::size_t(r)])]);
+    trace.rank_stored_rows.push_back(refine_starts[std::size_t(r) + 1] -
+                                     refine_starts[std::size_t(r)]);
   if (ranks.size() > 1) {
-    std::vector<std::uint64_t> held, wanted;
-    for (int r = 0; r <= ranks.size(); ++r) {
-      held.push_back(row_start[std::size_t(
-          r < ranks.size() ? rank_share(ranks, header.height, r).first : header.height)]);
-      wanted.push_back(row_start[std::size_t(result.bands[std::size_t(r)])]);
-    }
+    std::vector<int> read_bands;
+    for (int r = 0; r < ranks.size(); ++r)
+      read_bands.push_back(rank_share(ranks, header.height, r).first);
+    read_bands.push_back(header.height);
     auto balanced = std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name + ".balanced",
                                                   lights, clustering.threads);
-    move_scratch_rows(ranks, *scratch, held, wanted, block_rows, *balanced);
+    move_scratch_rows(ranks, *scratch, band_starts(read_bands), refine_starts, block_rows,
+                      *balanced);
     scratch = std::move(balanced);
   }
+  // The build pass and the error measure read all of their pixel rows' functions too: reading and
+  // preparing one costs about 0.4 of building a stored function (docs/scale.md), and their bands
+  // hold even shares of both.
+  std::vector<std::uint64_t> build_cost;
+  const std::uint64_t row_functions = std::uint64_t(header.width) * header.channels;
+  for (const std::uint64_t stored : stored_per_row)
+    build_cost.push_back(5 * stored + 2 * row_functions);
+  StreamedCompression result;
+  result.bands = weighted_shares(build_cost, ranks.size());
+  const int build_begin = result.bands[std::size_t(ranks.rank())];
+  const int build_end = result.bands[std::size_t(ranks.rank()) + 1];
 
   // 2. Fit on the sample (the same rows whatever the ranks), gathered at the root; its bases go
   // to every rank.
@@ -440,9 +455,14 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   if (plan.compressed_on_disk)
     result.strips = std::make_unique<CompressedStripFile>(plan.scratch_folder,
                                                           scratch_name + ".compressed");
+  const std::vector<std::uint64_t> build_starts = band_starts(result.bands);
+  if (ranks.size() > 1 && !assignment.empty())
+    assignment = move_assignment(ranks, assignment, refine_starts, build_starts);
+  const std::size_t build_rows =
+      build_starts[std::size_t(ranks.rank()) + 1] - build_starts[std::size_t(ranks.rank())];
   std::vector<BuiltPart> parts =
       gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
-                                     scratch->rows(), begin_row, end_row, result.strips.get()));
+                                     build_rows, build_begin, build_end, result.strips.get()));
   if (result.strips) {
     result.band_strips = result.strips->strips();
     result.strips->shell().bases = bases.bases;
