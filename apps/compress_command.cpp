@@ -245,6 +245,7 @@ nlohmann::ordered_json streamed_json(const StreamedTrace& trace) {
           {"rank_stored_functions", trace.rank_stored_rows},
           {"rank_compute_seconds", trace.rank_compute_seconds},
           {"rank_bytes_sent", trace.rank_bytes_sent},
+          {"rank_build_seconds", trace.rank_build_seconds},
           {"sample_rows", trace.sample_rows},
           {"sample_clustering_threads", trace.sample_clustering_threads},
           {"sample_clustering_cores", trace.sample_clustering_cores},

@@ -460,23 +460,29 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
     assignment = move_assignment(ranks, assignment, refine_starts, build_starts);
   const std::size_t build_rows =
       build_starts[std::size_t(ranks.rank()) + 1] - build_starts[std::size_t(ranks.rank())];
-  std::vector<BuiltPart> parts =
-      gather_parts(ranks, build_part(reader, options, plan, stats, bases, dark, assignment,
-                                     build_rows, build_begin, build_end, result.strips.get()));
+  const auto build_part_start = Clock::now();
+  BuiltPart built = build_part(reader, options, plan, stats, bases, dark, assignment, build_rows,
+                               build_begin, build_end, result.strips.get());
+  const double build_part_seconds = seconds_since(build_part_start);
+  std::vector<BuiltPart> parts = gather_parts(ranks, std::move(built));
   if (result.strips) {
     result.band_strips = result.strips->strips();
     result.strips->shell().bases = bases.bases;
     gather_strips_to_root(ranks, *result.strips);
   }
-  // Every rank's time outside the exchanges, and bytes sent, at the root.
-  std::vector<double> rank_figures(2 * std::size_t(ranks.size()), 0.0);
-  rank_figures[2 * std::size_t(ranks.rank())] = seconds_since(run_start) - ranks.exchange_seconds();
-  rank_figures[2 * std::size_t(ranks.rank()) + 1] = double(ranks.bytes_sent());
+  // Every rank's time outside the exchanges, bytes sent and seconds building its band, at the
+  // root.
+  std::vector<double> rank_figures(3 * std::size_t(ranks.size()), 0.0);
+  double* own_figures = rank_figures.data() + 3 * ranks.rank();
+  own_figures[0] = seconds_since(run_start) - ranks.exchange_seconds();
+  own_figures[1] = double(ranks.bytes_sent());
+  own_figures[2] = build_part_seconds;
   ranks.sum_to_root(rank_figures.data(), rank_figures.size());
   if (!ranks.root()) return result;
   for (int r = 0; r < ranks.size(); ++r) {
-    trace.rank_compute_seconds.push_back(rank_figures[2 * std::size_t(r)]);
-    trace.rank_bytes_sent.push_back(std::uint64_t(rank_figures[2 * std::size_t(r) + 1]));
+    trace.rank_compute_seconds.push_back(rank_figures[3 * std::size_t(r)]);
+    trace.rank_bytes_sent.push_back(std::uint64_t(rank_figures[3 * std::size_t(r) + 1]));
+    trace.rank_build_seconds.push_back(rank_figures[3 * std::size_t(r) + 2]);
   }
 
   CompressedField& out = result.strips ? result.strips->shell() : result.field;

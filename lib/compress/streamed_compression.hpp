@@ -47,10 +47,11 @@ struct StreamedTrace {
   double read_seconds = 0, sample_clustering_seconds = 0, refine_seconds = 0, build_seconds = 0;
   std::vector<StreamedPass> passes;
   // Per rank (core/ranks.hpp): stored functions of its band, seconds outside the exchanges
-  // between ranks, and bytes sent.
+  // between ranks, bytes sent, and seconds its build pass took (before the parts are gathered).
   std::vector<std::uint64_t> rank_stored_rows;
   std::vector<double> rank_compute_seconds;
   std::vector<std::uint64_t> rank_bytes_sent;
+  std::vector<double> rank_build_seconds;
 };
 
 struct StreamedCompression {

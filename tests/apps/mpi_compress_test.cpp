@@ -85,6 +85,7 @@ class MpiCompress : public ::testing::Test {
         EXPECT_TRUE(report["plan"]["streamed"].get<bool>()) << "several ranks always stream";
         EXPECT_EQ(report["streamed"]["rank_bytes_sent"].size(), std::size_t(ranks));
         EXPECT_EQ(report["streamed"]["rank_compute_seconds"].size(), std::size_t(ranks));
+        EXPECT_EQ(report["streamed"]["rank_build_seconds"].size(), std::size_t(ranks));
         EXPECT_GT(report["streamed"]["rank_bytes_sent"][1].get<double>(), 0);
         // The bands hold the same stored functions to within two pixel rows', all of them together
         // one rank's.
