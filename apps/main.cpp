@@ -24,9 +24,9 @@
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/signals.hpp"
-#include "output_paths.hpp"
+#include "options/output_paths.hpp"
 #ifdef RELUME_HAVE_MPI
-#include "mpi_ranks.hpp"
+#include "commands/compress/mpi_ranks.hpp"
 #endif
 
 namespace {

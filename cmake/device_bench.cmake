@@ -4,7 +4,7 @@
 # assignment pieces of compress) and no image I/O, container, GLPK or OpenImageIO; libstdc++ and
 # libgcc are linked in, and the OpenCL ICD loader is looked for next to the binary first
 # (RUNPATH $ORIGIN), where scripts/build_device_bench.sh copies it. `bench --container` says that
-# this build cannot read containers (apps/bench/device_only/).
+# this build cannot read containers (apps/commands/bench/device_only/).
 include("${PROJECT_SOURCE_DIR}/cmake/library_parts.cmake")
 
 set(lib "${PROJECT_SOURCE_DIR}/lib")
@@ -24,9 +24,10 @@ target_link_libraries(relume_device_library PUBLIC Eigen3::Eigen OpenCL::OpenCL
 set(apps "${PROJECT_SOURCE_DIR}/apps")
 add_executable(relume
   "${apps}/main.cpp" "${apps}/command_registry.cpp" "${apps}/command_suggestion.cpp"
-  "${apps}/json_report.cpp" "${apps}/devices_command.cpp" "${apps}/bench/bench_command.cpp"
-  "${apps}/bench/bench_runs.cpp" "${apps}/bench/bench_records.cpp"
-  "${apps}/bench/device_only/container_sweep_unavailable.cpp")
+  "${apps}/options/json_report.cpp" "${apps}/commands/inspect/devices_command.cpp"
+  "${apps}/commands/bench/bench_command.cpp"
+  "${apps}/commands/bench/bench_runs.cpp" "${apps}/commands/bench/bench_records.cpp"
+  "${apps}/commands/bench/device_only/container_sweep_unavailable.cpp")
 target_include_directories(relume PRIVATE "${apps}")
 target_link_libraries(relume PRIVATE relume_device_library CLI11::CLI11)
 target_link_options(relume PRIVATE -static-libstdc++ -static-libgcc)

@@ -1,0 +1,352 @@
+// `relume relight-sequence`: an animated relighting of a .relume container: one map rotated by a
+// fixed step per frame, one map per frame from a list, a moved light circling the object
+// (--light-orbit) or following a file of directions (--light-path), written as numbered images
+// and/or a video (--video, apps/video_writer.hpp). Frames are relit B at a time in
+// one pass over W and the residual, written as numbered images, and the run reports frames/s, the
+// kernels' GB/s and, with --compare, each frame's error against the full-residual render.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <optional>
+#include <relume/error.hpp>
+#include <relume/image.hpp>
+#include <relume/lighting.hpp>
+
+#include "command_registry.hpp"
+#include "container/container.hpp"
+#include "core/atomic_file.hpp"
+#include "core/console.hpp"
+#include "core/progress.hpp"
+#include "options/directional_light_options.hpp"
+#include "field/light_file.hpp"
+#include "options/frame_pattern.hpp"
+#include "image/image_difference.hpp"
+#include "options/image_output_options.hpp"
+#include "options/json_report.hpp"
+#include "lighting/environment_map.hpp"
+#include "options/output_paths.hpp"
+#include "relight/compressed_relight_reference.hpp"
+#include "options/renderer_options.hpp"
+#include "options/rotation_option.hpp"
+#include "commands/relight/video_writer.hpp"
+
+namespace relume {
+namespace {
+namespace fs = std::filesystem;
+
+struct SequenceOptions {
+  std::string input;
+  std::string environment;
+  std::string environment_list;
+  std::string layout = "auto";
+  std::optional<double> orbit_elevation;
+  std::string light_path;
+  DirectionalLightOptions moved_light;
+  int frames = 36;
+  std::string rotate_start = "0";  // degrees or "auto"
+  double rotate_step = 10;
+  std::string output_pattern;
+  int batch = 16;
+  int start_number = 0;
+  std::string video;
+  int video_fps = 24;
+  std::string video_codec;
+  ImageOutputOptions image_output;
+  bool compare = false;
+  std::string report;
+  RendererOptions renderer;
+};
+
+std::vector<std::string> read_map_list(const std::string& list) {
+  std::ifstream in(list);
+  if (!in) throw Error("cannot open environment list " + list);
+  std::vector<std::string> maps;
+  const fs::path folder = fs::path(list).parent_path();
+  for (std::string line; std::getline(in, line);) {
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    if (line.empty() || line[0] == '#') continue;
+    maps.push_back(fs::path(line).is_absolute() ? line : (folder / line).string());
+  }
+  if (maps.empty()) throw Error("environment list " + list + " names no maps");
+  return maps;
+}
+
+// The direction of a light `elevation` degrees above the object's plane (x-y, facing the camera)
+// at `azimuth` degrees from +x towards +y: counter-clockwise as the camera sees it.
+Eigen::Vector3d orbit_direction(double elevation, double azimuth) {
+  const double e = elevation * std::numbers::pi / 180, a = azimuth * std::numbers::pi / 180;
+  return {std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
+}
+
+// The light vectors of a moved light along an orbit or a path of directions.
+std::vector<LightRgb> moved_light_frames(const SequenceOptions& options,
+                                         const CompressedField& field) {
+  std::vector<Eigen::Vector3d> path;
+  if (!options.light_path.empty()) {
+    const LightDirections rows = read_direction_rows(options.light_path);
+    for (Eigen::Index i = 0; i < rows.rows(); ++i)
+      path.push_back(rows.row(i).transpose().cast<double>());
+    if (path.empty()) throw Error("light path " + options.light_path + " names no directions");
+  } else {
+    if (options.rotate_start == "auto")
+      throw Error("--rotate auto turns environment maps; give --light-orbit its first azimuth");
+    const double first_azimuth = parse_rotation_degrees(options.rotate_start);
+    for (int frame = 0; frame < options.frames; ++frame)
+      path.push_back(
+          orbit_direction(*options.orbit_elevation, first_azimuth + frame * options.rotate_step));
+  }
+  const LightInterpolation interpolation(field.directions);
+  int outside = 0;
+  std::vector<LightRgb> lights;
+  const Eigen::Vector3d color(options.moved_light.color.data());
+  for (const auto& direction : path) {
+    outside += !interpolation.covers(direction);
+    lights.push_back(
+        interpolation.light_vector({direction, color, options.moved_light.spread_degrees}));
+  }
+  if (outside > 0)
+    note(
+        "%d of %zu frames light the object from outside the captured lights' cover: lit from "
+        "the nearest point of its rim",
+        outside, path.size());
+  return lights;
+}
+
+// The light vector of every frame.
+std::vector<LightRgb> frame_lights(const SequenceOptions& options, const CompressedField& field) {
+  if (options.orbit_elevation || !options.light_path.empty())
+    return moved_light_frames(options, field);
+  const auto layout = parse_layout_option(options.layout);
+  std::vector<LightRgb> lights;
+  if (!options.environment_list.empty()) {
+    // Every map turned by the same rotation (with auto, the first map's best).
+    std::optional<double> rotation;
+    for (const auto& map_path : read_map_list(options.environment_list)) {
+      const LightVectorIntegrator integrator(load_environment_map(map_path, layout),
+                                             field.directions);
+      if (!rotation) {
+        const ResolvedRotation first = resolve_rotation(options.rotate_start, integrator);
+        note("%s: %s", map_path.c_str(), first.information.c_str());
+        rotation = first.degrees;
+      }
+      lights.push_back(integrator.integrate(*rotation).rgb);
+    }
+    return lights;
+  }
+  const LightVectorIntegrator integrator(load_environment_map(options.environment, layout),
+                                         field.directions);
+  const ResolvedRotation first = resolve_rotation(options.rotate_start, integrator);
+  note("%s: %s", options.environment.c_str(), first.information.c_str());
+  for (int frame = 0; frame < options.frames; ++frame)
+    lights.push_back(integrator.integrate(first.degrees + frame * options.rotate_step).rgb);
+  return lights;
+}
+
+void run_sequence(const SequenceOptions& options) {
+  if (options.output_pattern.empty() && options.video.empty())
+    throw Error("give -o PATTERN (frame images), --video FILE, or both");
+  std::optional<FramePattern> pattern;
+  if (!options.output_pattern.empty()) {
+    pattern.emplace(options.output_pattern, options.start_number);
+    check_image_output(pattern->path(0), options.image_output);
+  }
+  if (!options.video.empty()) {
+    check_new_output(options.video);
+    VideoWriter::check_target(options.video, options.video_codec);
+  }
+  if (options.batch < 1) throw Error("--batch must be at least 1");
+  if (options.frames < 1) throw Error("--frames must be at least 1");
+  check_renderer_options(options.renderer);
+  check_new_output(options.report);
+  if (!options.report.empty()) check_output_file_location(options.report);
+  if (pattern) {
+    const fs::path folder = fs::path(pattern->path(0)).parent_path();
+    if (!folder.empty()) check_output_folder_location(folder);
+  }
+  if (!options.video.empty()) check_output_file_location(options.video);
+  const CompressedField field = read_container(options.input);
+  const std::vector<LightRgb> lights = frame_lights(options, field);
+  check_relight_memory(field, std::min<std::size_t>(std::size_t(options.batch), lights.size()) *
+                                  (options.compare ? 2 : 1));
+  if (pattern)
+    for (std::size_t frame = 0; frame < lights.size(); ++frame)
+      check_new_output(pattern->path(int(frame)));
+  const int cap = residual_cap(options.renderer, field.lights);
+  using clock = std::chrono::steady_clock;
+  // Set-up apart from frames/s: uploading the field, and building the kernels, which happens on
+  // the first relight of each batch size (one warm-up relight of each size used).
+  const auto setup_start = clock::now();
+  Relighter renderer(field, options.renderer.relighter);
+  const std::size_t full = std::min<std::size_t>(options.batch, lights.size());
+  for (const std::size_t size : {full, lights.size() % full})
+    if (size > 0)
+      renderer.relight_batch(std::vector<LightRgb>(lights.begin(), lights.begin() + size), cap);
+  const double setup_seconds = std::chrono::duration<double>(clock::now() - setup_start).count();
+  note(
+      "relight-sequence: set-up %.2f s (field upload, kernel build, one warm-up relight per "
+      "batch size), not counted in frames/s",
+      setup_seconds);
+  if (pattern) {
+    const fs::path folder = fs::path(pattern->path(0)).parent_path();
+    if (!folder.empty()) fs::create_directories(folder);
+  }
+  std::optional<VideoWriter> video;
+  if (!options.video.empty())
+    video.emplace(options.video, field.width, field.height, options.video_fps, options.video_codec);
+
+  double relight_seconds = 0, kernel_seconds = 0, kernel_bytes = 0;
+  nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+  // From the first frame (its auto exposure, if asked), for every frame.
+  std::optional<ImageWriteOptions> write;
+  ProgressReporter progress("relight-sequence", lights.size());
+  for (std::size_t first = 0; first < lights.size(); first += options.batch) {
+    const std::size_t count = std::min<std::size_t>(options.batch, lights.size() - first);
+    const std::vector<LightRgb> batch(lights.begin() + first, lights.begin() + first + count);
+    const auto start = clock::now();
+    const std::vector<Image> images = renderer.relight_batch(batch, cap);
+    relight_seconds += std::chrono::duration<double>(clock::now() - start).count();
+    kernel_seconds += renderer.last_kernel_seconds();
+    kernel_bytes += renderer.last_kernel_bytes();
+    std::vector<Image> references;
+    if (options.compare) references = renderer.relight_batch(batch, full_residual);
+    for (std::size_t b = 0; b < count; ++b) {
+      const int frame = static_cast<int>(first + b);
+      if (!write) {
+        const bool display =
+            video || !is_float_image_format(pattern->path(0)) || options.image_output.bits != 0;
+        write = ImageWriteOptions{
+            display ? display_exposure(options.image_output, images[b], field.mask) : 0.0,
+            options.image_output.bits, options.image_output.half};
+      }
+      nlohmann::ordered_json record = {{"frame", frame}};
+      if (pattern) {
+        write_image(pattern->path(frame), images[b], *write);
+        record["file"] = pattern->path(frame);
+      }
+      if (video) video->add_frame(images[b], write->exposure);
+      if (options.compare)
+        record["error"] = image_difference(images[b], references[b]).relative_squared_error;
+      frames.push_back(record);
+      progress.advance();
+    }
+  }
+  progress.finish();
+  if (video) {
+    video->finish();
+    say("wrote %s: %d frames, %s, %d frames/s", options.video.c_str(), video->frames(),
+        video->codec_name().c_str(), options.video_fps);
+  }
+
+  const double fps = relight_seconds > 0 ? lights.size() / relight_seconds : 0;
+  const double gbps = kernel_seconds > 0 ? 1e-9 * kernel_bytes / kernel_seconds : 0;
+  say("%zu frames on %s, batch %d, residual cap %s: %.1f frames/s relighting (%.2f s), "
+      "kernels %.2f GB/s",
+      lights.size(), renderer.device_name().c_str(), options.batch,
+      cap == full_residual ? "all" : std::to_string(cap).c_str(), fps, relight_seconds, gbps);
+  if (options.compare) {
+    double worst = 0;
+    for (const auto& f : frames) worst = std::max(worst, f["error"].get<double>());
+    say("largest per-frame relative squared error against the full residual: %.3g", worst);
+  }
+  if (!options.report.empty()) {
+    const nlohmann::ordered_json report = {{"device", renderer.device_name()},
+                                           {"frames", lights.size()},
+                                           {"batch", options.batch},
+                                           {"residual_cap", cap == full_residual ? -1 : cap},
+                                           {"setup_seconds", setup_seconds},
+                                           {"relight_seconds", relight_seconds},
+                                           {"frames_per_second", fps},
+                                           {"kernel_gbps", gbps},
+                                           {"per_frame", frames}};
+    nlohmann::ordered_json document = report;
+    if (video)
+      document["video"] = {{"file", options.video},
+                           {"codec", video->codec_name()},
+                           {"frames_per_second", options.video_fps}};
+    write_json_report(options.report, document);
+  }
+}
+
+const CommandRegistration registration{
+    35, [](CLI::App& app) {
+      auto options = std::make_shared<SequenceOptions>();
+      auto* command = app.add_subcommand(
+          "relight-sequence",
+          "Relight a .relume container under a rotating environment, a list of maps, or a light\n"
+          "moved along an orbit or a path, one image per frame.\n"
+          "Example: relume relight-sequence scene.relume --light-orbit 20 --frames 72 "
+          "--rotate-step 5 -o orbit/%04d.png");
+      command->add_option("input", options->input, "The .relume container")->required();
+      auto* env =
+          command->add_option("--env", options->environment,
+                              "Environment map rotated about +y by --rotate-step per frame");
+      auto* list = command->add_option("--env-list", options->environment_list,
+                                       "Text file naming one environment map per frame (paths "
+                                       "relative to the list's folder)");
+      auto* orbit = command->add_option(
+          "--light-orbit", options->orbit_elevation,
+          "A moved light circling the object at this elevation in degrees above the object's "
+          "plane (low = raking light), starting at azimuth --rotate (degrees from +x towards +y) "
+          "and turning --rotate-step per frame, for --frames frames");
+      auto* path = command->add_option("--light-path", options->light_path,
+                                       "A moved light following a file of directions, one "
+                                       "'x y z' row per frame");
+      const std::vector<CLI::Option*> sources = {env, list, orbit, path};
+      for (CLI::Option* source : sources)
+        for (CLI::Option* other : sources)
+          if (other != source) source->excludes(other);
+      add_light_color_options(*command, options->moved_light);
+      command->add_option("--layout", options->layout, "Map layout: auto, latlong, angular, cross")
+          ->capture_default_str();
+      command
+          ->add_option("--frames", options->frames, "Frames to render with --env or --light-orbit")
+          ->capture_default_str();
+      add_rotation_option(*command, options->rotate_start,
+                          "Rotation of the first frame in degrees: the map's about +y, or the "
+                          "orbit's azimuth");
+      command
+          ->add_option("--rotate-step", options->rotate_step, "Rotation added per frame, degrees")
+          ->capture_default_str();
+      command->add_option(
+          "-o,--output", options->output_pattern,
+          "Frame file pattern with one frame number, %d, %04d or #### (four digits), "
+          "e.g. frames/%04d.exr or frames/####.png (optional with --video)");
+      command->add_option(
+          "--video", options->video,
+          "Also (or only) encode the frames into this video with FFmpeg's libraries: H.264 "
+          "(libx264) in .mp4/.mkv/.mov, VP9 in .webm; exposed like PNG frames");
+      command->add_option("--fps", options->video_fps, "Frames per second of --video")
+          ->check(CLI::Range(1, 240))
+          ->capture_default_str();
+      command->add_option("--codec", options->video_codec,
+                          "FFmpeg encoder for --video instead of the default (e.g. mpeg4, "
+                          "libvpx-vp9)");
+      command
+          ->add_option("--batch", options->batch,
+                       "Frames relit together in one pass over the compressed data")
+          ->capture_default_str();
+      command
+          ->add_option("--start-number", options->start_number,
+                       "Number of the first frame in the file names")
+          ->capture_default_str();
+      add_image_output_options(*command, options->image_output);
+      command->add_flag("--compare", options->compare,
+                        "Also render each frame with the full residual and report the error");
+      command->add_option("--report", options->report, "Write a JSON report of the run");
+      add_renderer_options(*command, options->renderer);
+      command->callback([options] {
+        if (options->environment.empty() && options->environment_list.empty() &&
+            !options->orbit_elevation && options->light_path.empty())
+          throw Error(
+              "give --env MAP (rotating), --env-list FILE, --light-orbit ELEVATION or "
+              "--light-path FILE");
+        run_sequence(*options);
+      });
+    }};
+
+}  // namespace
+}  // namespace relume

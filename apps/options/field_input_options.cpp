@@ -1,0 +1,80 @@
+// Implementation of the shared field input options.
+#include "options/field_input_options.hpp"
+
+#include "core/console.hpp"
+#include "core/progress.hpp"
+#include "field/field_source.hpp"
+#include "field/input_encoding.hpp"
+
+namespace relume {
+
+void add_field_input_options(CLI::App& command, FieldInputOptions& options) {
+  auto* mask = command.add_option(
+      "--mask", options.mask_file,
+      "Object mask for the input (an image of its size, non-zero = inside), for any input "
+      "(an .lp capture too); replaces a folder's mask.png. Pixels outside are not stored and "
+      "relight to black");
+  auto* no_mask = command.add_flag(
+      "--no-mask", options.no_mask,
+      "Ignore the folder's mask.png: every pixel is inside (the background is kept)");
+  mask->excludes(no_mask);
+  no_mask->excludes(mask);
+  auto* encoding = command
+                       .add_option("--input-encoding", options.input_encoding,
+                                   "How 8-bit input images are decoded: auto (float and 16-bit "
+                                   "images and DiLiGenT folders linear; other 8-bit JPEG/PNG "
+                                   "sRGB unless they declare linear), linear or srgb")
+                       ->capture_default_str()
+                       ->check(CLI::IsMember({"auto", "linear", "srgb"}));
+  auto* linear = command.add_flag("--linear", options.linear,
+                                  "Short for --input-encoding linear (8-bit values are linear)");
+  auto* srgb = command.add_flag("--srgb", options.srgb,
+                                "Short for --input-encoding srgb (8-bit values are sRGB-encoded)");
+  linear->excludes(srgb)->excludes(encoding);
+  srgb->excludes(linear)->excludes(encoding);
+  encoding->excludes(linear)->excludes(srgb);
+}
+
+namespace {
+
+EightBitEncoding requested_encoding(const FieldInputOptions& options) {
+  if (options.linear || options.input_encoding == "linear") return EightBitEncoding::linear;
+  if (options.srgb || options.input_encoding == "srgb") return EightBitEncoding::srgb;
+  return EightBitEncoding::automatic;  // "auto", the only other value the option accepts
+}
+
+}  // namespace
+
+std::string describe_field_input(const FieldInputOptions& options) {
+  const std::string mask = options.no_mask             ? "none"
+                           : options.mask_file.empty() ? "the folder's"
+                                                       : options.mask_file;
+  const std::string encoding = options.linear ? "linear"
+                               : options.srgb ? "srgb"
+                                              : options.input_encoding;
+  return "mask " + mask + ", encoding " + encoding;
+}
+
+FieldLoadOptions input_load_options(const std::string& input, const FieldInputOptions& options,
+                                    unsigned threads) {
+  const FieldSource source = describe_field(input);
+  const InputEncodingDecision decision = decide_input_encoding(source, requested_encoding(options));
+  note("%s: input %s", input.c_str(), decision.reason.c_str());
+  FieldLoadOptions load;
+  load.image.eight_bit = decision.encoding;
+  load.threads = threads;
+  load.mask_file = options.mask_file;
+  load.use_mask = !options.no_mask;
+  return load;
+}
+
+ReflectanceField load_input_field(const std::string& input, FieldLoadOptions load) {
+  const std::size_t images = describe_field(input).images.size();
+  ProgressReporter progress("loading " + std::to_string(images) + " images", images);
+  load.image_loaded = [&progress] { progress.advance(); };
+  ReflectanceField field = load_field(input, load);
+  progress.finish();
+  return field;
+}
+
+}  // namespace relume

@@ -1,0 +1,48 @@
+// Implementation of the shared relighting options.
+#include "options/renderer_options.hpp"
+
+#include "compress/residual_selection.hpp"
+#include "core/memory_budget.hpp"
+#include "opencl/runtime.hpp"
+
+namespace relume {
+
+void add_renderer_options(CLI::App& command, RendererOptions& options) {
+  command.add_option("--device", options.relighter.device,
+                     "OpenCL device: a substring of 'platform / device' (see `relume devices`); "
+                     "default RELUME_DEVICE, else a GPU, else PoCL's CPU device");
+  command.add_flag("--cpu", options.relighter.cpu_reference,
+                   "Relight with the plain C++ reference instead of OpenCL");
+  command
+      .add_option("--residual", options.residual,
+                  "Residual entries used per function: 'all', a count N, or P% of the lights "
+                  "(fewer is faster and less accurate)")
+      ->capture_default_str();
+  command.add_flag("--allow-negative", options.relighter.allow_negative,
+                   "Keep negative relit values: by default a container of non-negative data relit "
+                   "under a non-negative light has its undershoot below zero set to 0 (the true "
+                   "image is >= 0 there); use this to see the raw reconstruction");
+}
+
+void check_renderer_options(const RendererOptions& options) {
+  if (options.residual != "all") parse_residual_budget(options.residual);
+  if (!options.relighter.cpu_reference) select_opencl_device(options.relighter.device);
+}
+
+void check_relight_memory(const CompressedField& field, std::size_t images) {
+  // The relighter copies W, the bases and the residual into the kernels' layout (at most as large
+  // as the decoded field), and relights into float RGB images of the field's size.
+  const std::uint64_t model = std::uint64_t(field.weights.size()) * 4 + field.bases.size() * 4 +
+                              field.residual.nonzeros() * 8 + field.stored_rows() * 12;
+  const std::uint64_t image = std::uint64_t(field.width) * std::uint64_t(field.height) * 3 * 4;
+  check_memory_need(model + images * image, "relighting " + std::to_string(field.width) + "x" +
+                                                std::to_string(field.height) + " pixels (" +
+                                                std::to_string(images) + " images at once)");
+}
+
+int residual_cap(const RendererOptions& options, int lights) {
+  if (options.residual == "all") return full_residual;
+  return parse_residual_budget(options.residual).entries_for(lights);
+}
+
+}  // namespace relume
