@@ -24,7 +24,7 @@ target_link_libraries(relume_device_library PUBLIC Eigen3::Eigen OpenCL::OpenCL
 set(apps "${PROJECT_SOURCE_DIR}/apps")
 add_executable(relume
   "${apps}/main.cpp" "${apps}/command_registry.cpp" "${apps}/command_suggestion.cpp"
-  "${apps}/options/json_report.cpp" "${apps}/commands/inspect/devices_command.cpp"
+  "${apps}/commands/inspect/devices_command.cpp"
   "${apps}/commands/bench/bench_command.cpp"
   "${apps}/commands/bench/bench_runs.cpp" "${apps}/commands/bench/bench_records.cpp"
   "${apps}/commands/bench/device_only/container_sweep_unavailable.cpp")

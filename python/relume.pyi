@@ -1,7 +1,7 @@
 # Type stub of the relume extension module (python/src/): its whole interface with types, for
 # editors, type checkers and notebooks. The docstrings of the module itself say more.
 import os
-from typing import Callable, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -56,6 +56,56 @@ class Field:
     def relight(self, light: ArrayLike, *, threads: int = 0) -> Float32Array:
         """The uncompressed field relit: (height, width, channels)."""
     def save(self, folder: PathLike) -> None: ...
+
+class CompressOptions:
+    """Every option of compress, compress_file and `relume compress` with its default (the
+    command's --help explains each: the names are its options' with _ for -)."""
+
+    def __init__(self, **options: object) -> None: ...
+    method: str = "l1"
+    pca_center: str = "none"
+    pca_iterations: int = 20
+    trimmed_refit: int = -1
+    refit_chooses_clusters: bool = False
+    clusters: int = 64
+    terms: int = 4
+    residual: Union[int, str] = "5%"
+    residual_allocation: str = "per-function"
+    noise_floor: float = -1.0
+    threshold: float = -1.0
+    solver: str = "irls"
+    transform: str = "identity"
+    light_weighting: float = 0.0
+    multires: int = 0
+    refine: int = -1
+    iterations: int = 4
+    candidates: int = 3
+    irls_iterations: int = 5
+    min_cluster_size: int = -1
+    max_cluster_size: int = 0
+    seed: int = 1
+    threads: int = 0
+    assign: str = "opencl"
+    device: str = ""
+    weights_precision: str = "quantized"
+    residual_precision: str = "quantized"
+    bases_precision: str = "quantized"
+    quantization_budget: float = 0.01
+    term_budget: float = -1.0
+    target_error: float = 0.0
+    target_bytes: int = 0
+    target_bytes_per_pixel: float = 0.0
+    target_psnr: float = 0.0
+    target_region: str = "frame"
+    psnr_white: float = 1.0
+    psnr_mask: PathLike = ""
+    mask_file: PathLike = ""
+    use_mask: bool = True
+    input_encoding: str = "auto"
+    memory_limit: Union[int, str] = 0
+    resume: bool = False
+    scratch: PathLike = ""
+    quiet: bool = True
 
 class Compressed:
     """A compressed reflectance field; array attributes are read-only views (no copy)."""
@@ -139,7 +189,14 @@ class Compressed:
         light_index: str = "auto",
     ) -> int: ...
 
-def load(path: PathLike, *, srgb: bool = False, threads: int = 0) -> Field: ...
+def load(
+    path: PathLike,
+    *,
+    input_encoding: str = "auto",
+    mask_file: Optional[PathLike] = None,
+    use_mask: bool = True,
+    threads: int = 0,
+) -> Field: ...
 def open(path: PathLike) -> Compressed: ...
 def compress(
     field: Union[Field, Float32Array],
@@ -147,20 +204,28 @@ def compress(
     *,
     mask: Optional[ArrayLike] = None,
     intensities: Optional[ArrayLike] = None,
+    report: Optional[PathLike] = None,
+    progress: Optional[Progress] = None,
+    method: str = "l1",
+    pca_center: str = "none",
+    pca_iterations: int = 20,
+    trimmed_refit: int = -1,
+    refit_chooses_clusters: bool = False,
     clusters: int = 64,
     terms: int = 4,
     residual: Union[int, str] = "5%",
-    threshold: float = -1.0,
+    residual_allocation: str = "per-function",
     noise_floor: float = -1.0,
+    threshold: float = -1.0,
     solver: str = "irls",
     transform: str = "identity",
     light_weighting: float = 0.0,
     multires: int = 0,
-    refine: int = 2,
+    refine: int = -1,
     iterations: int = 4,
     candidates: int = 3,
     irls_iterations: int = 5,
-    min_cluster_size: Optional[int] = None,
+    min_cluster_size: int = -1,
     max_cluster_size: int = 0,
     seed: int = 1,
     threads: int = 0,
@@ -170,11 +235,74 @@ def compress(
     residual_precision: str = "quantized",
     bases_precision: str = "quantized",
     quantization_budget: float = 0.01,
-    term_budget: float = 0.0,
-    target_error: Optional[float] = None,
+    term_budget: float = -1.0,
+    target_error: float = 0.0,
+    target_bytes: int = 0,
+    target_bytes_per_pixel: float = 0.0,
+    target_psnr: float = 0.0,
+    target_region: str = "frame",
+    psnr_white: float = 1.0,
+    psnr_mask: PathLike = "",
+    mask_file: PathLike = "",
+    use_mask: bool = True,
+    input_encoding: str = "auto",
+    memory_limit: Union[int, str] = 0,
+    resume: bool = False,
+    scratch: PathLike = "",
     quiet: bool = True,
-    progress: Optional[Progress] = None,
 ) -> Compressed: ...
+def compress_file(
+    input: PathLike,
+    output: PathLike,
+    *,
+    report: Optional[PathLike] = None,
+    progress: Optional[Progress] = None,
+    method: str = "l1",
+    pca_center: str = "none",
+    pca_iterations: int = 20,
+    trimmed_refit: int = -1,
+    refit_chooses_clusters: bool = False,
+    clusters: int = 64,
+    terms: int = 4,
+    residual: Union[int, str] = "5%",
+    residual_allocation: str = "per-function",
+    noise_floor: float = -1.0,
+    threshold: float = -1.0,
+    solver: str = "irls",
+    transform: str = "identity",
+    light_weighting: float = 0.0,
+    multires: int = 0,
+    refine: int = -1,
+    iterations: int = 4,
+    candidates: int = 3,
+    irls_iterations: int = 5,
+    min_cluster_size: int = -1,
+    max_cluster_size: int = 0,
+    seed: int = 1,
+    threads: int = 0,
+    assign: str = "opencl",
+    device: str = "",
+    weights_precision: str = "quantized",
+    residual_precision: str = "quantized",
+    bases_precision: str = "quantized",
+    quantization_budget: float = 0.01,
+    term_budget: float = -1.0,
+    target_error: float = 0.0,
+    target_bytes: int = 0,
+    target_bytes_per_pixel: float = 0.0,
+    target_psnr: float = 0.0,
+    target_region: str = "frame",
+    psnr_white: float = 1.0,
+    psnr_mask: PathLike = "",
+    mask_file: PathLike = "",
+    use_mask: bool = True,
+    input_encoding: str = "auto",
+    memory_limit: Union[int, str] = 0,
+    resume: bool = False,
+    scratch: PathLike = "",
+    quiet: bool = True,
+) -> Dict[str, Any]:
+    """The report, as `relume compress --report` writes it."""
 def relative_error(
     original: Field,
     compressed: Compressed,

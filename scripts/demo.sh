@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
-scripts/build.sh
+scripts/build.sh relume  # the main job runs only the command
 
 relume="build/apps/relume -y"  # -y: a rerun replaces the previous outputs
 out=out/demo

@@ -27,11 +27,12 @@ ci_tests=(
 )
 
 scripts/install_deps.sh
+source scripts/compiler_cache.sh
 # -O1 -g: compiles faster than -O2 on CI's 2 cores and runs the instrumented tests fast enough;
 # without -DNDEBUG, so Eigen's bounds assertions check every block and index as well.
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELUME_SANITIZE=ON \
   -DRELUME_BUILD_PYTHON=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
-  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g"
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" "${compiler_cache[@]}"
 export RELUME_QUIET=1
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:detect_stack_use_after_return=0"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitizer_suppressions.txt:print_suppressions=0"

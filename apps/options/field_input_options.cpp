@@ -35,30 +35,15 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options) {
   encoding->excludes(linear)->excludes(srgb);
 }
 
-namespace {
-
-EightBitEncoding requested_encoding(const FieldInputOptions& options) {
-  if (options.linear || options.input_encoding == "linear") return EightBitEncoding::linear;
-  if (options.srgb || options.input_encoding == "srgb") return EightBitEncoding::srgb;
-  return EightBitEncoding::automatic;  // "auto", the only other value the option accepts
-}
-
-}  // namespace
-
-std::string describe_field_input(const FieldInputOptions& options) {
-  const std::string mask = options.no_mask             ? "none"
-                           : options.mask_file.empty() ? "the folder's"
-                                                       : options.mask_file;
-  const std::string encoding = options.linear ? "linear"
-                               : options.srgb ? "srgb"
-                                              : options.input_encoding;
-  return "mask " + mask + ", encoding " + encoding;
+std::string requested_encoding(const FieldInputOptions& options) {
+  return options.linear ? "linear" : options.srgb ? "srgb" : options.input_encoding;
 }
 
 FieldLoadOptions input_load_options(const std::string& input, const FieldInputOptions& options,
                                     unsigned threads) {
   const FieldSource source = describe_field(input);
-  const InputEncodingDecision decision = decide_input_encoding(source, requested_encoding(options));
+  const InputEncodingDecision decision =
+      decide_input_encoding(source, parse_input_encoding(requested_encoding(options)));
   note("%s: input %s", input.c_str(), decision.reason.c_str());
   FieldLoadOptions load;
   load.image.eight_bit = decision.encoding;

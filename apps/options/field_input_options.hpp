@@ -20,8 +20,8 @@ struct FieldInputOptions {
 
 void add_field_input_options(CLI::App& command, FieldInputOptions& options);
 
-// The options as one line ("mask folder, encoding auto"), for checkpoint fingerprints.
-std::string describe_field_input(const FieldInputOptions& options);
+// "auto", "linear" or "srgb", as --input-encoding, --linear or --srgb asked.
+std::string requested_encoding(const FieldInputOptions& options);
 
 // How `input` is read as the options say, with `threads` workers: decides the input encoding
 // (once) and notes the decision with its reason. No progress callback.

@@ -25,7 +25,7 @@ void add_renderer_options(CLI::App& command, RendererOptions& options) {
 }
 
 void check_renderer_options(const RendererOptions& options) {
-  if (options.residual != "all") parse_residual_budget(options.residual);
+  if (options.residual != "all") ResidualBudget::parse(options.residual);
   if (!options.relighter.cpu_reference) select_opencl_device(options.relighter.device);
 }
 
@@ -42,7 +42,7 @@ void check_relight_memory(const CompressedField& field, std::size_t images) {
 
 int residual_cap(const RendererOptions& options, int lights) {
   if (options.residual == "all") return full_residual;
-  return parse_residual_budget(options.residual).entries_for(lights);
+  return ResidualBudget::parse(options.residual).entries_for(lights);
 }
 
 }  // namespace relume

@@ -21,4 +21,5 @@
 #include <relume/image.hpp>             // Image, read_image, write_image
 #include <relume/lighting.hpp>          // environment maps, light vectors, the built-in sky
 #include <relume/relight.hpp>           // Relighter (OpenCL), CPU reference relighting
+#include <relume/residual_budget.hpp>   // ResidualBudget: residual entries kept per function
 #include <relume/version.hpp>           // version(), git_commit()

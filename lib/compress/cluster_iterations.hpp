@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <optional>
+#include <relume/compress.hpp>
 #include <vector>
 
 #include "compress/cluster_assignment.hpp"
@@ -23,17 +24,18 @@ using AssignFunction = std::function<AssignmentResult(
     const WorkingRows& rows, const ClusterModel& model, const CandidateLists& candidates)>;
 
 struct ClusteringOptions {
-  int clusters = 64;
-  int terms = 4;
-  int max_iterations = 4;          // L1 iterations (F-step + reassignment)
+  // The defaults of relume/compress.hpp's CompressOptions, the one place that holds them.
+  int clusters = compress_defaults().clusters;
+  int terms = compress_defaults().terms;
+  int max_iterations = compress_defaults().iterations;  // L1 iterations (F-step + reassignment)
   double settle_fraction = 0.002;  // stop once fewer than this fraction of rows change cluster
-  int candidates = 3;              // clusters given the exact L1 fit per row
+  int candidates = compress_defaults().candidates;  // clusters given the exact L1 fit per row
   IrlsSettings weight_fit;         // the W fits (assignment)
   IrlsSettings basis_fit;          // the F-step
   ClusterSizeLimits sizes;
   int l2_rounds = 4;
   int seed_sample_rows = 20000;
-  std::uint64_t seed = 1;
+  std::uint64_t seed = compress_defaults().seed;
   unsigned threads = 0;
   // Refit every cluster's F and its rows' W with this exact solver after the iterations
   // (nullopt: keep the IRLS result).

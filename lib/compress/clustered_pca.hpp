@@ -39,7 +39,8 @@ std::string to_string(PcaCentering centering);
 
 struct ClusteredPcaOptions {
   PcaCentering centering = PcaCentering::none;
-  int iterations = 20;  // fit + reassignment rounds after the seeding (they stop once settled)
+  // Fit + reassignment rounds after the seeding (they stop once settled).
+  int iterations = compress_defaults().pca_iterations;
 };
 
 // Clusters `rows` by clustered PCA. From `clustering` it takes the clusters, terms, seeding

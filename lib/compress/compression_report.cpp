@@ -109,7 +109,7 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
           {"refit_chooses_clusters", options.refit_chooses_clusters}};
 }
 
-nlohmann::ordered_json compression_report(const CompressionRun& run) {
+nlohmann::ordered_json compression_report(const CompressionReportInputs& run) {
   const CompressedField& compressed = *run.compressed;
   const CompressionStats& stats = *run.stats;
   const FieldErrors& errors = run.errors;

@@ -17,7 +17,7 @@
 
 namespace relume {
 
-struct CompressionRun {
+struct CompressionReportInputs {
   std::string input, output;
   const CompressedField* compressed = nullptr;  // as stored
   FieldErrors errors;                           // of `compressed` against the original
@@ -38,7 +38,7 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
                                               const CompressionStats& stats,
                                               const std::string& solver);
 
-nlohmann::ordered_json compression_report(const CompressionRun& run);
+nlohmann::ordered_json compression_report(const CompressionReportInputs& run);
 
 // Peak resident memory of this process so far, in bytes (getrusage).
 std::uint64_t peak_memory_bytes();

@@ -121,9 +121,16 @@ std::unique_ptr<OpenClAssigner> make_opencl_assigner(const std::string& device_s
     return std::make_unique<OpenClAssigner>(device_selector, clustering.weight_fit);
   } catch (const Error& error) {
     throw Error(std::string(error.what()) +
-                " (the assignment runs without OpenCL with --assign cpu, or opencl_assignment = "
-                "false in the library)");
+                " (the assignment runs without OpenCL with --assign cpu, assign = \"cpu\" in the "
+                "library and in Python)");
   }
+}
+
+std::unique_ptr<OpenClAssigner> make_assigner(const std::string& assign, const std::string& device,
+                                              const ClusteringOptions& clustering) {
+  if (assign == "cpu") return nullptr;
+  if (assign != "opencl") throw Error("--assign must be 'opencl' or 'cpu', got '" + assign + "'");
+  return make_opencl_assigner(device, clustering);
 }
 
 }  // namespace relume

@@ -49,4 +49,10 @@ class OpenClAssigner {
 std::unique_ptr<OpenClAssigner> make_opencl_assigner(const std::string& device_selector,
                                                      const ClusteringOptions& clustering);
 
+// The assignment `assign` names: "opencl", the OpenCL assigner on `device` (make_opencl_assigner),
+// or "cpu", the C++ path (null). Throws Error for another name. Install the assigner's function()
+// as clustering.assign; the pointer keeps it alive.
+std::unique_ptr<OpenClAssigner> make_assigner(const std::string& assign, const std::string& device,
+                                              const ClusteringOptions& clustering);
+
 }  // namespace relume

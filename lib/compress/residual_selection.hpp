@@ -5,20 +5,11 @@
 #pragma once
 
 #include <relume/compressed_field.hpp>
+#include <relume/residual_budget.hpp>
 #include <string>
 #include <vector>
 
 namespace relume {
-
-// How many residual entries each function keeps: a count, or a percentage of the lights.
-struct ResidualBudget {
-  int entries = 0;        // used when percent < 0
-  double percent = -1.0;  // >= 0: round(percent / 100 * lights) entries
-
-  // Entries per function for a field of `lights` lights (never more than `lights`).
-  int entries_for(int lights) const;
-  std::string describe() const;  // "10" or "5%"
-};
 
 // How the residual budget is spread over the functions: `per_function` keeps the budget's n
 // largest entries of every function (paper section 3.4); `peak` keeps n x functions entries over
@@ -29,9 +20,6 @@ enum class ResidualAllocation { per_function, peak };
 // "per-function" or "peak"; throws Error naming the bad text.
 ResidualAllocation parse_residual_allocation(const std::string& text);
 const char* to_string(ResidualAllocation allocation);
-
-// "N" (a count >= 0) or "P%" (0 <= P <= 100); throws Error naming the bad text.
-ResidualBudget parse_residual_budget(const std::string& text);
 
 // Appends one row to `rows` (whose row_offsets must already hold the row's start): the entries of
 // residual[0..lights) with |value| > threshold, the `max_entries` largest in |value| (all of them

@@ -1,6 +1,8 @@
 // The input-encoding rule for fields.
 #include "field/input_encoding.hpp"
 
+#include <relume/error.hpp>
+
 #include "image/image_encoding.hpp"
 
 namespace relume {
@@ -27,6 +29,13 @@ InputEncodingDecision decide_input_encoding(const FieldSource& source, EightBitE
 InputEncodingDecision decide_input_encoding(const std::filesystem::path& path,
                                             EightBitEncoding requested) {
   return decide_input_encoding(describe_field(path), requested);
+}
+
+EightBitEncoding parse_input_encoding(const std::string& text) {
+  if (text == "auto") return EightBitEncoding::automatic;
+  if (text == "linear") return EightBitEncoding::linear;
+  if (text == "srgb") return EightBitEncoding::srgb;
+  throw Error("input encoding '" + text + "' is invalid: expected auto, linear or srgb");
 }
 
 }  // namespace relume

@@ -27,4 +27,7 @@ InputEncodingDecision decide_input_encoding(const FieldSource& source, EightBitE
 InputEncodingDecision decide_input_encoding(const std::filesystem::path& path,
                                             EightBitEncoding requested);
 
+// "auto", "linear" or "srgb" (`--input-encoding`); throws Error naming another text.
+EightBitEncoding parse_input_encoding(const std::string& text);
+
 }  // namespace relume

@@ -3,12 +3,15 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <optional>
+#include <relume/compress.hpp>
 #include <relume/field.hpp>
 #include <relume/relight.hpp>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "errors.hpp"
+#include "field/input_encoding.hpp"
 
 namespace relume::python {
 
@@ -106,21 +109,28 @@ light, filenames.txt, light_directions.txt, light_intensities.txt and mask.png.)
 
   module.def(
       "load",
-      [](const std::filesystem::path& path, bool srgb, unsigned threads) {
+      [](const std::filesystem::path& path, const std::string& input_encoding,
+         std::optional<std::filesystem::path> mask_file, bool use_mask, unsigned threads) {
         FieldLoadOptions options;
-        options.image.eight_bit = srgb ? EightBitEncoding::srgb : EightBitEncoding::linear;
+        options.image.eight_bit = parse_input_encoding(input_encoding);
+        options.mask_file = mask_file.value_or(std::filesystem::path());
+        options.use_mask = use_mask;
         options.threads = threads;
         return with_file_errors([&] {
           py::gil_scoped_release released;
           return load_field(path, options);
         });
       },
-      "path"_a, py::kw_only(), "srgb"_a = false, "threads"_a = 0,
+      "path"_a, py::kw_only(), "input_encoding"_a = compress_defaults().input_encoding,
+      "mask_file"_a = py::none(), "use_mask"_a = compress_defaults().use_mask, "threads"_a = 0,
       R"(Load a reflectance field: a field folder (DiLiGenT layout: the images, filenames.txt,
 light_directions.txt, optional light_intensities.txt and mask.png) or an RTI .lp file.
 
-8-bit images are linear unless srgb=True. Raises relume.FileError naming the file, line or
-pixel at fault (missing files, unequal image sizes, NaN/Inf pixels).)");
+input_encoding: how 8-bit images are decoded, as `relume compress --input-encoding` decodes
+them: "auto" (float and 16-bit images and DiLiGenT folders linear, other 8-bit JPEG/PNG sRGB
+unless they declare linear), "linear" or "srgb". mask_file replaces a folder's mask.png (for
+an .lp capture too); use_mask=False keeps every pixel. Raises relume.FileError naming the
+file, line or pixel at fault (missing files, unequal image sizes, NaN/Inf pixels).)");
 }
 
 }  // namespace relume::python

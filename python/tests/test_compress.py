@@ -2,6 +2,9 @@
 and the OpenCL assignment, the Haar basis, an exact LP refit), on a field given as a
 relume.Field or as arrays, its progress callback, the GIL released while it runs, and the
 errors its options raise."""
+import json
+import os
+import pathlib
 import threading
 import time
 
@@ -9,7 +12,7 @@ import numpy as np
 import pytest
 
 import relume
-from conftest import SMALL, cli_options, run_relume
+from conftest import SMALL, cli_options, run_relume, source_dir
 
 
 def assert_same_compression(ours, theirs):
@@ -95,7 +98,9 @@ def test_the_gil_is_released_while_compressing(field):
     ({"clusters": 0}, "clusters must be >= 1, got 0"),
     ({"solver": "simplex"}, "unknown L1 solver 'simplex'"),
     ({"weights_precision": "float8"}, 'unknown precision "float8"'),
-    ({"target_error": -0.1}, "target_error must be a relative error > 0"),
+    ({"target_error": -0.1}, "--target-error must be a finite number > 0"),
+    ({"target_psnr": 40, "target_bytes": 1000}, "--target-bytes and --target-psnr are two targets"),
+    ({"clusterz": 4}, "unknown compress option 'clusterz'"),
     ({"threshold": float("nan")}, "residual threshold must be a finite value (negative: the noise floor)"),
     ({"progress": 3}, "progress must be a callable"),
 ])
@@ -132,4 +137,45 @@ def test_target_error_equals_the_command_and_reaches_its_target(scene, field, tm
     ours = relume.compress(field, **options)
     assert_same_compression(ours, relume.open(tmp_path / "cli.relume"))
     assert relume.relative_error(field, ours) <= 0.01 * (1 + 1e-6)
-    assert ours.parameters["target_error"] == 0.01
+
+
+def file_bytes(path):
+    with open(path, "rb") as stream:
+        return stream.read()
+
+
+def shared_capture(name):
+    data = pathlib.Path(os.environ.get("RELUME_DATA", source_dir().parent / "shared" / "data"))
+    path = data / "olat" / name
+    if not path.exists():
+        pytest.skip(f"shared data not found at {data} (set RELUME_DATA to the folder that holds olat/)")
+    return path
+
+
+@pytest.mark.parametrize("capture", ["diligent-bear-crop8", "rti-loewenkopf/dirs.lp"])
+def test_compress_file_and_load_write_the_commands_container(capture, tmp_path):
+    """The same bytes from the command, from compress_file, and from load + compress + save (an
+    .lp capture of 8-bit JPEGs is decoded as sRGB by all three)."""
+    source = shared_capture(capture)
+    options = {**SMALL, "iterations": 2}
+    run_relume("compress", source, "-o", tmp_path / "cli.relume", *cli_options(options))
+    report = relume.compress_file(source, tmp_path / "file.relume", report=tmp_path / "r.json",
+                                  **options)
+    relume.compress(relume.load(source), **options).save(tmp_path / "memory.relume")
+    command = file_bytes(tmp_path / "cli.relume")
+    assert file_bytes(tmp_path / "file.relume") == command
+    assert file_bytes(tmp_path / "memory.relume") == command
+    assert report["bytes"] == len(command)
+    assert json.loads((tmp_path / "r.json").read_text())["bytes"] == len(command)
+
+
+def test_rate_target_memory_limit_and_report_from_python(field, tmp_path):
+    target = 30  # bytes per pixel of the 32 x 24 frame
+    ours = relume.compress(field, threads=2, assign="cpu", seed=3,
+                           target_bytes_per_pixel=target, memory_limit="2G",
+                           report=tmp_path / "report.json")
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert report["bytes"] == ours.file_size() <= target * 32 * 24
+    assert report["software"].startswith("relume")
+    assert report["rate_target"]["met"]
+    assert ours.file_size() > 0.9 * target * 32 * 24

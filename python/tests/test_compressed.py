@@ -114,8 +114,8 @@ def test_save_and_open_round_trip(compressed, saved, tmp_path):
                  "residual_indices", "residual_values", "mask", "directions", "intensities"):
         np.testing.assert_array_equal(getattr(opened, name), getattr(compressed, name), name)
     assert os.path.getsize(saved) == compressed.file_size()
-    assert opened.parameters["written_from"] == "python"
     assert opened.parameters["seed"] == SMALL["seed"]
+    assert opened.parameters["clusters_asked"] == SMALL["clusters"]
     info = json.loads(run_relume("info", saved, "--json").stdout)
     assert info["clusters"] == compressed.clusters
 

@@ -29,8 +29,8 @@ CompressOptions small_options() {
   CompressOptions options;
   options.clusters = 6;
   options.terms = 3;
-  options.residual_entries = 4;
-  options.opencl_assignment = false;  // the C++ path reports every assignment's rows
+  options.residual = relume::ResidualBudget{4};
+  options.assign = "cpu";  // the C++ path reports every assignment's rows
   options.threads = 2;
   return options;
 }

@@ -42,7 +42,7 @@ CompressOptions small_options(int clusters, int terms) {
   options.clusters = clusters;
   options.terms = terms;
   options.iterations = 3;
-  options.opencl_assignment = false;
+  options.assign = "cpu";
   options.threads = 2;
   return options;
 }

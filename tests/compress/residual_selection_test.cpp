@@ -13,14 +13,14 @@ namespace relume {
 namespace {
 
 TEST(ResidualSelection, ParsesCountsAndPercentages) {
-  EXPECT_EQ(parse_residual_budget("10").entries_for(96), 10);
-  EXPECT_EQ(parse_residual_budget("500").entries_for(96), 96);
-  EXPECT_EQ(parse_residual_budget("5%").entries_for(96), 5);  // 4.8 rounds to 5
-  EXPECT_EQ(parse_residual_budget("100%").entries_for(96), 96);
-  EXPECT_EQ(parse_residual_budget("0%").entries_for(96), 0);
-  EXPECT_EQ(parse_residual_budget("2.5%").describe(), "2.5%");
+  EXPECT_EQ(ResidualBudget::parse("10").entries_for(96), 10);
+  EXPECT_EQ(ResidualBudget::parse("500").entries_for(96), 96);
+  EXPECT_EQ(ResidualBudget::parse("5%").entries_for(96), 5);  // 4.8 rounds to 5
+  EXPECT_EQ(ResidualBudget::parse("100%").entries_for(96), 96);
+  EXPECT_EQ(ResidualBudget::parse("0%").entries_for(96), 0);
+  EXPECT_EQ(ResidualBudget::parse("2.5%").describe(), "2.5%");
   for (const char* bad : {"", "%", "-1", "abc", "5%%", "101%", "3.5", "1e3x"})
-    EXPECT_THROW(parse_residual_budget(bad), Error) << bad;
+    EXPECT_THROW(ResidualBudget::parse(bad), Error) << bad;
 }
 
 TEST(ResidualSelection, KeepsTheLargestEntriesSortedByMagnitude) {

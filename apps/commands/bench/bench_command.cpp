@@ -15,7 +15,7 @@
 #include "commands/bench/bench_runs.hpp"
 #include "command_registry.hpp"
 #include "core/progress.hpp"
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 #include "model/basis_alignment.hpp"
 #include "model/quantization.hpp"
 #include "model/random_compressed_field.hpp"

@@ -16,7 +16,7 @@
 #include "command_registry.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/progress.hpp"
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 #include "l1/factorization.hpp"
 #include "l1/planted_matrix.hpp"
 

@@ -32,7 +32,7 @@
 #include "commands/eval/eval_runs.hpp"
 #include "commands/eval/function_classes.hpp"
 #include "field/npy.hpp"
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 #include "lighting/environment_map.hpp"
 #include "model/field_psnr.hpp"
 

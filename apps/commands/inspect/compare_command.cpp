@@ -13,7 +13,7 @@
 #include "command_registry.hpp"
 #include "field/mask_file.hpp"
 #include "image/image_difference.hpp"
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 #include "options/output_paths.hpp"
 
 namespace relume {

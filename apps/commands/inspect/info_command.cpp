@@ -8,7 +8,7 @@
 
 #include "command_registry.hpp"
 #include "container/container.hpp"
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 
 namespace relume {
 namespace {

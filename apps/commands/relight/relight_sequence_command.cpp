@@ -26,7 +26,7 @@
 #include "options/frame_pattern.hpp"
 #include "image/image_difference.hpp"
 #include "options/image_output_options.hpp"
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 #include "lighting/environment_map.hpp"
 #include "options/output_paths.hpp"
 #include "relight/compressed_relight_reference.hpp"

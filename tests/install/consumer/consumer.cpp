@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     relume::CompressOptions options;
     options.clusters = 8;
     options.terms = 3;
-    options.residual_entries = 4;
+    options.residual = relume::ResidualBudget{4};
     options.threads = 2;
     relume::write_container(work / "scene.relume", relume::compress(field, options));
     const relume::CompressedField compressed = relume::read_container(work / "scene.relume");

@@ -1,5 +1,5 @@
 // Implementation of the version-stamped JSON reports.
-#include "options/json_report.hpp"
+#include "core/json_report.hpp"
 
 #include <relume/version.hpp>
 
