@@ -1,5 +1,5 @@
-// Implementation of the eval's compressions and per-row measures (see eval_runs.hpp).
-#include "commands/eval/eval_runs.hpp"
+// Implementation of the eval's compressions and per-row measures (see grid_runs.hpp).
+#include "eval/grid_runs.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,12 @@
-// The compressions `relume eval` compares, all on the same prepared (unit-norm) rows: for every
-// (clusters, terms) of its grid the L1 method (relume's default), clustered PCA without centring
-// ("cpca", the stronger baseline at equal bytes) and with a mean ("cpca-mean", Sloan et al.), and
-// the L1 method refitted by trimmed least squares for each residual budget of a list
-// ("l1-refit"); and what is measured on every stored row of them.
+// The compressions the evaluation (`relume eval`) compares, all on the same prepared (unit-norm)
+// rows: for every (clusters, terms) of its grid the L1 method (relume's default), clustered PCA
+// without centring ("cpca", the stronger baseline at equal bytes) and with a mean ("cpca-mean",
+// Sloan et al.), and the L1 method refitted by trimmed least squares for each residual budget of a
+// list ("l1-refit"); and what is measured on every stored row of them.
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
-// Implementation of the eval's relighting measurements (see eval_relighting.hpp).
-#include "commands/eval/eval_relighting.hpp"
+// Implementation of the eval's relighting measurements (see relighting_measures.hpp).
+#include "eval/relighting_measures.hpp"
 
 #include <algorithm>
 #include <cmath>
