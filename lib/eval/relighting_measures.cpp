@@ -2,7 +2,6 @@
 #include "eval/relighting_measures.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <relume/error.hpp>
 #include <relume/relight.hpp>
 
@@ -21,16 +20,6 @@ double median(std::vector<double> values) {
 }
 
 }  // namespace
-
-Image scaled_difference(const Image& image, const Image& reference, float scale) {
-  if (image.width != reference.width || image.height != reference.height ||
-      image.channels != reference.channels)
-    throw Error("images of different sizes cannot be differenced");
-  Image out(image.width, image.height, image.channels);
-  for (std::size_t v = 0; v < out.pixels.size(); ++v)
-    out.pixels[v] = std::fabs(image.pixels[v] - reference.pixels[v]) * scale;
-  return out;
-}
 
 RelightingResult measure_relighting(
     const std::vector<std::pair<std::string, const CompressedField*>>& fields,

@@ -44,7 +44,4 @@ RelightingResult measure_relighting(
     const std::vector<std::pair<std::string, const CompressedField*>>& fields,
     const RelightingSetup& setup);
 
-// |image - reference| x scale, per value.
-Image scaled_difference(const Image& image, const Image& reference, float scale);
-
 }  // namespace relume

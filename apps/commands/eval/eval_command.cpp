@@ -32,6 +32,7 @@
 #include "eval/grid_runs.hpp"
 #include "eval/function_classes.hpp"
 #include "field/npy.hpp"
+#include "image/image_difference.hpp"
 #include "options/json_report.hpp"
 #include "lighting/environment_map.hpp"
 #include "model/field_psnr.hpp"
