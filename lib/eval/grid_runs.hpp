@@ -34,8 +34,13 @@ struct EvalRun {
   TrimmedRefitTrace refit;   // l1-refit only
 };
 
+// Whether `methods` names `method`.
+bool has_method(const std::vector<std::string>& methods, const std::string& method);
+
 // Every run of the grid, in order: per (clusters, terms), l1, cpca, cpca-mean, then l1-refit per
 // budget (only the methods asked for; l1-refit needs l1). `report` is told each run as it ends.
+// Reports progress per (clusters, terms), printed unless grid.clustering.quiet; interruptible
+// (between runs too).
 std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
                               const std::function<void(const EvalRun&)>& report);
 

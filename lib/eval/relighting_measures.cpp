@@ -5,8 +5,8 @@
 #include <relume/error.hpp>
 #include <relume/relight.hpp>
 
-#include "core/console.hpp"
 #include "core/elapsed_time.hpp"
+#include "core/progress.hpp"
 #include "image/image_difference.hpp"
 
 namespace relume {
@@ -37,6 +37,7 @@ RelightingResult measure_relighting(
   }
   RelightingResult result;
   result.reference = references.front();
+  ProgressReporter progress("eval: relighting", fields.size() * setup.caps.size(), true);
   for (const auto& [method, field] : fields) {
     RelighterOptions options;
     options.device = setup.device;
@@ -66,11 +67,13 @@ RelightingResult measure_relighting(
       row.frames_per_second = frame_seconds > 0 ? 1.0 / frame_seconds : 0;
       row.kernel_ms = 1e3 * median(kernel_seconds);
       row.relit_error = error / setup.frames;
-      detail("eval: relit %s with %d entries: %.1f frames/s, relit error %.5f", method.c_str(), cap,
-             row.frames_per_second, row.relit_error);
+      row.error_masked = relative_error(original, *field, true, cap, setup.threads).mean;
+      if (setup.on_row) setup.on_row(row);
       result.rows.push_back(row);
+      progress.advance();
     }
   }
+  progress.finish();
   return result;
 }
 
