@@ -72,4 +72,14 @@ ImageDifference image_difference(const Image& image, const Image& reference,
   return result;
 }
 
+Image scaled_difference(const Image& image, const Image& reference, float scale) {
+  if (image.width != reference.width || image.height != reference.height ||
+      image.channels != reference.channels)
+    throw Error("images of different sizes cannot be differenced");
+  Image out(image.width, image.height, image.channels);
+  for (std::size_t v = 0; v < out.pixels.size(); ++v)
+    out.pixels[v] = std::fabs(image.pixels[v] - reference.pixels[v]) * scale;
+  return out;
+}
+
 }  // namespace relume

@@ -4,7 +4,8 @@
 // which an 8-bit output then shows as black), the largest relative difference (|a - r| over
 // max(|r|, 1% of the reference's peak): a crescent relit 90% too dark shows as 0.9 however dim
 // it is, and black reference pixels do not divide by zero) and where it is, and the mean squared
-// difference behind RMS and PSNR. A mask restricts every figure to the pixels inside.
+// difference behind RMS and PSNR. A mask restricts every figure to the pixels inside. And the
+// difference itself as an image, scaled to be seen.
 #pragma once
 
 #include <cstdint>
@@ -42,5 +43,9 @@ ImageDifference image_difference(const Image& image, const Image& reference,
                                  const std::string& image_label = "image",
                                  const std::string& reference_label = "reference",
                                  const std::vector<std::uint8_t>& mask = {});
+
+// |image - reference| x scale, per value: a difference image to look at. Throws Error when the
+// images differ in size or channels.
+Image scaled_difference(const Image& image, const Image& reference, float scale);
 
 }  // namespace relume

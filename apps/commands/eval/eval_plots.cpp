@@ -20,6 +20,14 @@ namespace relume {
 #define RELUME_PLOT_PYTHON "python3"
 #endif
 
+const std::vector<std::string>& eval_plot_files() {
+  static const std::vector<std::string> files = {"error_vs_entries.png", "sparseness.png",
+                                                 "error_ratio.png",      "error_difference.png",
+                                                 "relighting.png",       "rate_distortion.png",
+                                                 "compression_time.png", "relit_side_by_side.png"};
+  return files;
+}
+
 void draw_eval_plots(const std::filesystem::path& directory) {
   const std::filesystem::path script = directory / "plot_eval.py";
   write_file_atomically(script, eval_plot_script());

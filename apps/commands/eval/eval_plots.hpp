@@ -5,11 +5,15 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace relume {
 
 // The text of scripts/plot_eval.py.
 const std::string& eval_plot_script();
+
+// The PNG files the script draws, by name.
+const std::vector<std::string>& eval_plot_files();
 
 // Writes DIR/plot_eval.py and runs it on DIR with RELUME_PYTHON from the environment when set,
 // else the Python 3 the build found. Throws Error when it cannot run or fails, saying what it

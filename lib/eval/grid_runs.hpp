@@ -1,11 +1,12 @@
-// The compressions `relume eval` compares, all on the same prepared (unit-norm) rows: for every
-// (clusters, terms) of its grid the L1 method (relume's default), clustered PCA without centring
-// ("cpca", the stronger baseline at equal bytes) and with a mean ("cpca-mean", Sloan et al.), and
-// the L1 method refitted by trimmed least squares for each residual budget of a list
-// ("l1-refit"); and what is measured on every stored row of them.
+// The compressions the evaluation (`relume eval`) compares, all on the same prepared (unit-norm)
+// rows: for every (clusters, terms) of its grid the L1 method (relume's default), clustered PCA
+// without centring ("cpca", the stronger baseline at equal bytes) and with a mean ("cpca-mean",
+// Sloan et al.), and the L1 method refitted by trimmed least squares for each residual budget of a
+// list ("l1-refit"); and what is measured on every stored row of them.
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,13 @@ struct EvalRun {
   TrimmedRefitTrace refit;   // l1-refit only
 };
 
+// Whether `methods` names `method`.
+bool has_method(const std::vector<std::string>& methods, const std::string& method);
+
 // Every run of the grid, in order: per (clusters, terms), l1, cpca, cpca-mean, then l1-refit per
 // budget (only the methods asked for; l1-refit needs l1). `report` is told each run as it ends.
+// Reports progress per (clusters, terms), printed unless grid.clustering.quiet; interruptible
+// (between runs too).
 std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
                               const std::function<void(const EvalRun&)>& report);
 

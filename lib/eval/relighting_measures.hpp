@@ -3,6 +3,7 @@
 // environment map turned through a few rotations; and the relit images of one cap.
 #pragma once
 
+#include <functional>
 #include <relume/compressed_field.hpp>
 #include <relume/image.hpp>
 #include <relume/lighting.hpp>
@@ -10,6 +11,16 @@
 #include <vector>
 
 namespace relume {
+
+struct RelightingRow {
+  std::string method;
+  int cap = 0;
+  double frames_per_second = 0;  // 1 / median wall time of one relight() call (with readback)
+  double kernel_ms = 0;          // median device time of its kernels
+  double relit_error = 0;   // relative squared error against the uncompressed field relit, mean
+                            // over the frames
+  double error_masked = 0;  // Eq. 16 error of the stored field with this cap, inside the mask
+};
 
 struct RelightingSetup {
   const ReflectanceField* original = nullptr;
@@ -21,15 +32,7 @@ struct RelightingSetup {
   int image_cap = 0;      // the cap whose first frame is kept as the relit image
   std::string device;     // OpenCL device (RelighterOptions::device)
   unsigned threads = 0;
-};
-
-struct RelightingRow {
-  std::string method;
-  int cap = 0;
-  double frames_per_second = 0;  // 1 / median wall time of one relight() call (with readback)
-  double kernel_ms = 0;          // median device time of its kernels
-  double relit_error = 0;  // relative squared error against the uncompressed field relit, mean
-                           // over the frames
+  std::function<void(const RelightingRow& row)> on_row;  // told each row as it is measured
 };
 
 struct RelightingResult {
@@ -39,12 +42,11 @@ struct RelightingResult {
   std::vector<std::pair<std::string, Image>> images;  // per method, image_cap, first frame
 };
 
-// `fields`: (method name, stored field) pairs. Throws Error when no OpenCL device matches.
+// `fields`: (method name, stored field) pairs. Reports progress per method and cap to the
+// thread's listener only (lib/core/progress.hpp); interruptible. Throws Error when no OpenCL
+// device matches.
 RelightingResult measure_relighting(
     const std::vector<std::pair<std::string, const CompressedField*>>& fields,
     const RelightingSetup& setup);
-
-// |image - reference| x scale, per value.
-Image scaled_difference(const Image& image, const Image& reference, float scale);
 
 }  // namespace relume

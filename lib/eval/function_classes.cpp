@@ -1,5 +1,5 @@
 // Implementation of the diffuse / specular classification (see function_classes.hpp).
-#include "commands/eval/function_classes.hpp"
+#include "eval/function_classes.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -1,13 +1,12 @@
-// Implementation of the eval's relighting measurements (see eval_relighting.hpp).
-#include "commands/eval/eval_relighting.hpp"
+// Implementation of the eval's relighting measurements (see relighting_measures.hpp).
+#include "eval/relighting_measures.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <relume/error.hpp>
 #include <relume/relight.hpp>
 
-#include "core/console.hpp"
 #include "core/elapsed_time.hpp"
+#include "core/progress.hpp"
 #include "image/image_difference.hpp"
 
 namespace relume {
@@ -21,16 +20,6 @@ double median(std::vector<double> values) {
 }
 
 }  // namespace
-
-Image scaled_difference(const Image& image, const Image& reference, float scale) {
-  if (image.width != reference.width || image.height != reference.height ||
-      image.channels != reference.channels)
-    throw Error("images of different sizes cannot be differenced");
-  Image out(image.width, image.height, image.channels);
-  for (std::size_t v = 0; v < out.pixels.size(); ++v)
-    out.pixels[v] = std::fabs(image.pixels[v] - reference.pixels[v]) * scale;
-  return out;
-}
 
 RelightingResult measure_relighting(
     const std::vector<std::pair<std::string, const CompressedField*>>& fields,
@@ -48,6 +37,7 @@ RelightingResult measure_relighting(
   }
   RelightingResult result;
   result.reference = references.front();
+  ProgressReporter progress("eval: relighting", fields.size() * setup.caps.size(), true);
   for (const auto& [method, field] : fields) {
     RelighterOptions options;
     options.device = setup.device;
@@ -77,11 +67,13 @@ RelightingResult measure_relighting(
       row.frames_per_second = frame_seconds > 0 ? 1.0 / frame_seconds : 0;
       row.kernel_ms = 1e3 * median(kernel_seconds);
       row.relit_error = error / setup.frames;
-      detail("eval: relit %s with %d entries: %.1f frames/s, relit error %.5f", method.c_str(), cap,
-             row.frames_per_second, row.relit_error);
+      row.error_masked = relative_error(original, *field, true, cap, setup.threads).mean;
+      if (setup.on_row) setup.on_row(row);
       result.rows.push_back(row);
+      progress.advance();
     }
   }
+  progress.finish();
   return result;
 }
 

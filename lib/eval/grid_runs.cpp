@@ -1,19 +1,17 @@
-// Implementation of the eval's compressions and per-row measures (see eval_runs.hpp).
-#include "commands/eval/eval_runs.hpp"
+// Implementation of the eval's compressions and per-row measures (see grid_runs.hpp).
+#include "eval/grid_runs.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
 #include "core/elapsed_time.hpp"
+#include "core/interruption.hpp"
 #include "core/parallel.hpp"
+#include "core/progress.hpp"
 
 namespace relume {
 namespace {
-
-bool asked(const EvalGrid& grid, const std::string& method) {
-  return std::find(grid.methods.begin(), grid.methods.end(), method) != grid.methods.end();
-}
 
 // |x - w F| of stored row r (unit norm), into `out` (lights values).
 void absolute_residual(const WorkingRows& rows, const ClusterModel& model, std::size_t r,
@@ -33,12 +31,19 @@ void absolute_residual(const WorkingRows& rows, const ClusterModel& model, std::
 
 }  // namespace
 
+bool has_method(const std::vector<std::string>& methods, const std::string& method) {
+  return std::find(methods.begin(), methods.end(), method) != methods.end();
+}
+
 std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
                               const std::function<void(const EvalRun&)>& report) {
   std::vector<EvalRun> runs;
+  ProgressReporter progress("eval: compressing", grid.clusters.size() * grid.terms.size(),
+                            grid.clustering.quiet);
   const auto finish = [&](EvalRun run) {
     runs.push_back(std::move(run));
     if (report) report(runs.back());
+    throw_if_interrupted();
   };
   for (const int clusters : grid.clusters) {
     for (const int terms : grid.terms) {
@@ -49,7 +54,7 @@ std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
       base.clusters_asked = clusters;
       base.terms = terms;
       std::size_t l1 = runs.size();
-      if (asked(grid, "l1") || asked(grid, "l1-refit")) {
+      if (has_method(grid.methods, "l1") || has_method(grid.methods, "l1-refit")) {
         const auto start = Clock::now();
         ClusteringTrace trace;
         EvalRun run = base;
@@ -62,7 +67,7 @@ std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
       }
       for (const PcaCentering centering : {PcaCentering::none, PcaCentering::mean}) {
         const std::string name = centering == PcaCentering::none ? "cpca" : "cpca-mean";
-        if (!asked(grid, name)) continue;
+        if (!has_method(grid.methods, name)) continue;
         const auto start = Clock::now();
         ClusteringTrace trace;
         ClusteredPcaOptions pca = grid.pca;
@@ -74,8 +79,9 @@ std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
         run.iterations = static_cast<int>(trace.iterations.size());
         finish(std::move(run));
       }
-      if (!asked(grid, "l1-refit")) continue;
-      for (const int entries : grid.refit_entries) {
+      const std::vector<int> budgets =
+          has_method(grid.methods, "l1-refit") ? grid.refit_entries : std::vector<int>{};
+      for (const int entries : budgets) {
         if (entries + terms >= rows.lights()) continue;
         const auto start = Clock::now();
         EvalRun run = base;
@@ -90,8 +96,10 @@ std::vector<EvalRun> run_grid(const WorkingRows& rows, const EvalGrid& grid,
         run.iterations = runs[l1].iterations;
         finish(std::move(run));
       }
+      progress.advance();
     }
   }
+  progress.finish();
   return runs;
 }
 
