@@ -17,8 +17,9 @@ case "${1:-}" in
   *) seconds="$1" ;;
 esac
 
+source scripts/compiler_cache.sh
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DRELUME_FUZZ=ON -DRELUME_BUILD_TESTS=OFF -DRELUME_BUILD_PYTHON=OFF >/dev/null
+  -DRELUME_FUZZ=ON -DRELUME_BUILD_TESTS=OFF -DRELUME_BUILD_PYTHON=OFF "${compiler_cache[@]}" >/dev/null
 cmake --build build-fuzz --target relume_fuzz_targets -j "$(nproc)"
 
 if [ "$make_seeds" -eq 1 ]; then
