@@ -41,8 +41,12 @@ void check_relight_memory(const CompressedField& field, std::size_t images) {
 }
 
 int residual_cap(const RendererOptions& options, int lights) {
-  if (options.residual == "all") return full_residual;
+  if (options.residual == "all") return all_residual_entries;
   return parse_residual_budget(options.residual).entries_for(lights);
+}
+
+std::string residual_cap_text(int residual_cap) {
+  return residual_cap == all_residual_entries ? "all" : std::to_string(residual_cap);
 }
 
 }  // namespace relume
