@@ -132,6 +132,7 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
     throw Error("OpenCL relighter: " + context.device().label() +
                 " is big-endian; the packed index arrays expect a little-endian device");
 
+  check_relight_memory(field, 1);
   const RelightLayout layout =
       lay_out_field(field, {slice_rows_, tail_rows_, head_entries_}, lights_even_);
   head_ = layout.head;

@@ -55,8 +55,9 @@ struct OpenClRelighterOptions {
 
 class OpenClRelighter {
  public:
-  // Checks the field (check_relightable) and uploads it. The context must outlive the relighter;
-  // the field need not.
+  // Checks the field (check_relightable) and that its layout fits the memory budget
+  // (check_relight_memory), and uploads it. The context must outlive the relighter; the field
+  // need not.
   OpenClRelighter(OpenClContext& context, const CompressedField& field,
                   const OpenClRelighterOptions& options = {});
 

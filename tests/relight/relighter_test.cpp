@@ -1,15 +1,23 @@
 // The public relume::Relighter, on PoCL and with the CPU reference: all_residual_entries (the
 // default cap) relights exactly as a cap of the field's longest residual row does, single and
-// batched, and a negative cap is refused.
+// batched, and a negative cap is refused; and the memory check of a relighting
+// (relight/relight_layout.hpp): what it counts, that it refuses with the numbers above the budget,
+// and that the OpenCL relighter checks before it lays a field out.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <relume/error.hpp>
 #include <relume/relight.hpp>
 
+#include "core/memory_budget.hpp"
 #include "model/random_compressed_field.hpp"
+#include "relight/relight_layout.hpp"
+#include "support/test_support.hpp"
 
 namespace relume {
 namespace {
+
+using ::testing::HasSubstr;
 
 CompressedField field_with_rows_of_every_length() {
   RandomFieldShape shape;
@@ -65,6 +73,35 @@ INSTANTIATE_TEST_SUITE_P(Backends, RelighterResidualCap, ::testing::Values(false
                          [](const ::testing::TestParamInfo<bool>& info) {
                            return std::string(info.param ? "cpu_reference" : "opencl");
                          });
+
+// Sets a memory limit for one test and lifts it again.
+class RelightMemory : public ::testing::Test {
+ protected:
+  void TearDown() override { set_memory_limit(0); }
+};
+
+TEST_F(RelightMemory, CountsTheLayoutAndEveryImage) {
+  const CompressedField field = field_with_rows_of_every_length();
+  // W and the bases as floats, a value and a light per residual entry, a function, a cluster and
+  // an offset per stored row; and float RGB images of the field's size.
+  const std::uint64_t model = field.weights.size() * 4 + field.bases.size() * 4 +
+                              field.residual.nonzeros() * 8 + field.stored_rows() * 12;
+  const std::uint64_t image = 20 * 12 * 3 * 4;
+  set_memory_limit(model + 2 * image);
+  EXPECT_NO_THROW(check_relight_memory(field, 2));
+  const std::string message = testing::error_message([&] { check_relight_memory(field, 3); });
+  EXPECT_THAT(message, HasSubstr("relighting 20x12 pixels (3 images at once) needs about"));
+  EXPECT_THAT(message, HasSubstr("available (--memory-limit)"));
+}
+
+TEST_F(RelightMemory, TheOpenClRelighterChecksBeforeLayingTheFieldOut) {
+  const CompressedField field = field_with_rows_of_every_length();
+  set_memory_limit(1024);
+  EXPECT_THAT(testing::error_message([&] { Relighter(field, pocl_or_reference(false)); }),
+              HasSubstr("relighting 20x12 pixels (1 images at once) needs about"));
+  // The CPU reference lays nothing out: it reads the field where it is.
+  EXPECT_NO_THROW(Relighter(field, pocl_or_reference(true)));
+}
 
 }  // namespace
 }  // namespace relume

@@ -20,6 +20,7 @@
 #include "options/light_source_options.hpp"
 #include "options/output_paths.hpp"
 #include "options/renderer_options.hpp"
+#include "relight/relight_layout.hpp"
 
 namespace relume {
 namespace {

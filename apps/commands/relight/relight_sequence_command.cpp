@@ -33,6 +33,7 @@
 #include "options/output_paths.hpp"
 #include "options/renderer_options.hpp"
 #include "options/rotation_option.hpp"
+#include "relight/relight_layout.hpp"
 
 namespace relume {
 namespace {

@@ -12,6 +12,7 @@
 #include "options/light_source_options.hpp"
 #include "options/number_or_auto.hpp"
 #include "options/rotation_option.hpp"
+#include "relight/relight_layout.hpp"
 
 namespace relume {
 namespace {
