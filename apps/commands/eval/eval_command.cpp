@@ -4,7 +4,7 @@
 // error against residual entries (all functions and two subsets), the ratio of the methods'
 // errors, the residual's sparseness, a per-pixel error difference, relighting speed and error per
 // residual cap (OpenCL), rate against distortion as the containers store it, compression times
-// and relit images go to CSV, NPY, PNG and one JSON summary (apps/eval/ holds the parts;
+// and relit images go to CSV, NPY, PNG and one JSON summary (apps/commands/eval/ holds the parts;
 // scripts/plot_eval.py draws the plots).
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // `relume relight-sequence`: an animated relighting of a .relume container: one map rotated by a
 // fixed step per frame, one map per frame from a list, a moved light circling the object
 // (--light-orbit) or following a file of directions (--light-path), written as numbered images
-// and/or a video (--video, apps/video_writer.hpp). Frames are relit B at a time in
+// and/or a video (--video, apps/commands/relight/video_writer.hpp). Frames are relit B at a time in
 // one pass over W and the residual, written as numbered images, and the run reports frames/s, the
 // kernels' GB/s and, with --compare, each frame's error against the full-residual render.
 #include <chrono>
