@@ -2,7 +2,6 @@
 #include "options/renderer_options.hpp"
 
 #include "compress/residual_selection.hpp"
-#include "core/memory_budget.hpp"
 #include "opencl/runtime.hpp"
 
 namespace relume {
@@ -29,20 +28,13 @@ void check_renderer_options(const RendererOptions& options) {
   if (!options.relighter.cpu_reference) select_opencl_device(options.relighter.device);
 }
 
-void check_relight_memory(const CompressedField& field, std::size_t images) {
-  // The relighter copies W, the bases and the residual into the kernels' layout (at most as large
-  // as the decoded field), and relights into float RGB images of the field's size.
-  const std::uint64_t model = std::uint64_t(field.weights.size()) * 4 + field.bases.size() * 4 +
-                              field.residual.nonzeros() * 8 + field.stored_rows() * 12;
-  const std::uint64_t image = std::uint64_t(field.width) * std::uint64_t(field.height) * 3 * 4;
-  check_memory_need(model + images * image, "relighting " + std::to_string(field.width) + "x" +
-                                                std::to_string(field.height) + " pixels (" +
-                                                std::to_string(images) + " images at once)");
+int residual_cap(const RendererOptions& options, int lights) {
+  if (options.residual == "all") return all_residual_entries;
+  return ResidualBudget::parse(options.residual).entries_for(lights);
 }
 
-int residual_cap(const RendererOptions& options, int lights) {
-  if (options.residual == "all") return full_residual;
-  return ResidualBudget::parse(options.residual).entries_for(lights);
+std::string residual_cap_text(int residual_cap) {
+  return residual_cap == all_residual_entries ? "all" : std::to_string(residual_cap);
 }
 
 }  // namespace relume

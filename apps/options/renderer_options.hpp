@@ -20,12 +20,11 @@ void add_renderer_options(CLI::App& command, RendererOptions& options);
 // matches).
 void check_renderer_options(const RendererOptions& options);
 
-// Refuses (Error with the numbers, core/memory_budget.hpp) a relighting whose field in the
-// relighter's memory and `images` output images would not fit the memory budget.
-void check_relight_memory(const CompressedField& field, std::size_t images);
-
-// The residual cap of `options.residual` for a field of `lights` lights (full_residual for "all").
-// Throws Error naming a malformed value.
+// The residual cap of `options.residual` for a field of `lights` lights (all_residual_entries for
+// "all"). Throws Error naming a malformed value.
 int residual_cap(const RendererOptions& options, int lights);
+
+// A cap as users write it: "all" for all_residual_entries, else the count.
+std::string residual_cap_text(int residual_cap);
 
 }  // namespace relume

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <relume/field.hpp>
 #include <vector>
 
@@ -82,14 +83,16 @@ struct CompressedField {
   const float* basis(int k) const { return bases.data() + std::size_t(k) * terms * lights; }
 };
 
-// residual_cap: entries of each residual row to keep (its largest ones, since rows are sorted by
-// |value| descending); -1 keeps all. Anything below -1 is refused.
-inline constexpr int all_residual_entries = -1;
+// residual_cap: at most this many entries of each residual row are kept (its largest ones, since
+// rows are sorted by |value| descending); a cap at or above a row's length keeps the whole row.
+// Every function that takes a cap (reconstruction, the error measures, relighting) accepts
+// all_residual_entries for "every entry" and refuses a negative cap.
+inline constexpr int all_residual_entries = std::numeric_limits<int>::max();
 
 // The whole field in the original (light) basis: stored rows reconstructed, dark pixels as the
 // dark model and, for a Haar-stored field, transformed back; other functions are zero. Mask,
 // directions and intensities are copied; image_names are left empty (write_field_folder names the
-// images). Throws Error for an inconsistent field (validate_compressed_field) or a cap below -1.
+// images). Throws Error for an inconsistent field (validate_compressed_field) or a negative cap.
 ReflectanceField reconstruct_field(const CompressedField& field,
                                    int residual_cap = all_residual_entries);
 
@@ -104,7 +107,7 @@ struct RelativeError {
 
 // masked_only: average only over functions whose pixel is inside the compressed field's mask.
 // Throws Error unless `original` has the compressed field's size, channels and lights, or for an
-// inconsistent compressed field or a cap below -1. Accumulates in double, in fixed blocks, so
+// inconsistent compressed field or a negative cap. Accumulates in double, in fixed blocks, so
 // the result does not depend on `threads` (0 = all cores).
 RelativeError relative_error(const ReflectanceField& original, const CompressedField& compressed,
                              bool masked_only, int residual_cap = all_residual_entries,

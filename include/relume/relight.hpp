@@ -11,7 +11,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
@@ -20,9 +19,6 @@
 #include <vector>
 
 namespace relume {
-
-// A residual cap that keeps every stored residual entry.
-inline constexpr int full_residual = std::numeric_limits<int>::max();
 
 // Which parts of the sum to evaluate: the whole relit image, or only the residual term E . I
 // (the residual SpMV on its own).
@@ -34,8 +30,9 @@ class CompressedRelightReference {
  public:
   explicit CompressedRelightReference(const CompressedField& field);
 
-  // Relit image (width x height x channels); at most residual_cap >= 0 entries per row are used.
-  Image relight(const LightRgb& light, int residual_cap = full_residual,
+  // Relit image (width x height x channels); at most residual_cap >= 0 entries per row are used
+  // (all_residual_entries: every entry).
+  Image relight(const LightRgb& light, int residual_cap = all_residual_entries,
                 RelightTerms terms = RelightTerms::all, unsigned threads = 0) const;
 
  private:
@@ -44,7 +41,7 @@ class CompressedRelightReference {
 
 // One-off form of CompressedRelightReference(field).relight(...).
 Image relight_compressed_reference(const CompressedField& field, const LightRgb& light,
-                                   int residual_cap = full_residual,
+                                   int residual_cap = all_residual_entries,
                                    RelightTerms terms = RelightTerms::all, unsigned threads = 0);
 
 // Reference relighting of an uncompressed field: out[p] = sum_i R[p,i] * I[i, c(p)], accumulated
@@ -75,11 +72,12 @@ class Relighter {
   Relighter(const Relighter&) = delete;
   Relighter& operator=(const Relighter&) = delete;
 
-  // One image (width x height x channels); at most residual_cap >= 0 entries per row are used.
-  Image relight(const LightRgb& light, int residual_cap = full_residual);
+  // One image (width x height x channels); at most residual_cap >= 0 entries per row are used
+  // (all_residual_entries: every entry).
+  Image relight(const LightRgb& light, int residual_cap = all_residual_entries);
   // One image per light vector.
   std::vector<Image> relight_batch(const std::vector<LightRgb>& lights,
-                                   int residual_cap = full_residual);
+                                   int residual_cap = all_residual_entries);
 
   // "platform / device" of the OpenCL device, or "CPU reference (C++)".
   std::string device_name() const;

@@ -1,7 +1,7 @@
 // The processes that share one run. A plain run is one process; `mpirun -n N relume compress ...`
-// (the command built with MPI, apps/mpi_ranks.*) makes it N ranks, over which a streamed
-// compression splits its pixel rows (compress/streamed_compression.hpp). The library only knows
-// this interface: one process by default, so it needs no MPI itself.
+// (the command built with MPI, apps/commands/compress/mpi_ranks.*) makes it N ranks, over which a
+// streamed compression splits its pixel rows (compress/streamed_compression.hpp). The library only
+// knows this interface: one process by default, so it needs no MPI itself.
 #pragma once
 
 #include <cstddef>

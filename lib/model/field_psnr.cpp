@@ -32,8 +32,7 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
                 int residual_cap, unsigned threads, const std::vector<std::uint8_t>& mask) {
   if (!(white > 0) || !std::isfinite(white))
     throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
-  if (residual_cap < all_residual_entries)
-    throw Error("residual cap " + std::to_string(residual_cap) + " is invalid");
+  check_residual_cap(residual_cap);
   validate_compressed_field(compressed, "cannot measure the PSNR of the compressed field");
   if (original.width != compressed.width || original.height != compressed.height ||
       original.channels != compressed.channels || original.lights() != compressed.lights)

@@ -20,7 +20,7 @@ struct Psnr8 {
 
 // `white`: the field value that maps to 255 (1 for fields of 8-bit or normalised images).
 // `mask`: width x height, non-zero inside, for the masked figure; empty: the compressed field's
-// mask. Throws Error for fields of different shapes, a mask of another size, a cap below -1 or a
+// mask. Throws Error for fields of different shapes, a mask of another size, a negative cap or a
 // white level that is not positive.
 Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compressed,
                 double white = 1.0, int residual_cap = all_residual_entries, unsigned threads = 0,

@@ -34,7 +34,7 @@ struct PerLightError {
 
 // masked_only: only functions whose pixel is inside the compressed field's mask. Throws Error
 // unless `original` has the compressed field's shape and lights, for an inconsistent compressed
-// field or a cap below -1. The result does not depend on `threads` (0 = all cores).
+// field or a negative cap. The result does not depend on `threads` (0 = all cores).
 PerLightError per_light_error(const ReflectanceField& original, const CompressedField& compressed,
                               bool masked_only, int residual_cap = all_residual_entries,
                               unsigned threads = 0);

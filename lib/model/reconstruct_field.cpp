@@ -13,9 +13,9 @@
 namespace relume {
 
 void check_residual_cap(int residual_cap) {
-  if (residual_cap < all_residual_entries)
+  if (residual_cap < 0)
     throw Error("residual cap " + std::to_string(residual_cap) +
-                " is invalid: expected -1 (all entries) or a count >= 0");
+                " is invalid: expected a count of entries >= 0 (all_residual_entries: all)");
 }
 
 namespace {
@@ -33,8 +33,7 @@ void accumulate_stored_row(const CompressedField& field, std::size_t row, int re
   }
   const std::uint32_t begin = field.residual.row_offsets[row];
   const std::uint32_t length = field.residual.row_offsets[row + 1] - begin;
-  const std::uint32_t kept =
-      residual_cap < 0 ? length : std::min<std::uint32_t>(length, residual_cap);
+  const std::uint32_t kept = std::min<std::uint32_t>(length, residual_cap);
   for (std::uint32_t k = begin; k < begin + kept; ++k)
     sum[field.residual.light_index[k]] += field.residual.values[k];
 }

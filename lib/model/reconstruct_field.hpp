@@ -30,12 +30,12 @@ void reconstruct_function(const CompressedField& field, std::int64_t stored_row,
 // Stored row of every function, or unstored_row / dark_model_row(c) where it has none.
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
 
-// Throws Error for a residual cap below -1 (all_residual_entries).
+// Throws Error for a negative residual cap (all_residual_entries keeps every entry).
 void check_residual_cap(int residual_cap);
 
 // What every measure of `compressed` against its `original` checks first: throws Error unless
-// the two have the same size, channels and lights (naming both shapes), or for a residual cap
-// below -1.
+// the two have the same size, channels and lights (naming both shapes), or for a negative
+// residual cap.
 void check_original_matches(const ReflectanceField& original, const CompressedField& compressed,
                             int residual_cap);
 

@@ -16,7 +16,7 @@ namespace relume {
 // strip of values and an index of the stored rows.
 std::size_t reconstructed_folder_memory(const CompressedField& field);
 
-// Throws Error for an inconsistent field or a cap below -1, Error naming the file that cannot be
+// Throws Error for an inconsistent field or a negative cap, Error naming the file that cannot be
 // written, Interrupted between strips when asked to stop.
 void write_reconstructed_folder(const std::filesystem::path& folder, const CompressedField& field,
                                 int residual_cap = all_residual_entries,

@@ -9,6 +9,7 @@
 #include "core/parallel.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/haar_transform.hpp"
+#include "model/reconstruct_field.hpp"
 
 namespace relume {
 
@@ -62,8 +63,7 @@ CompressedRelightReference::CompressedRelightReference(const CompressedField& fi
 
 Image CompressedRelightReference::relight(const LightRgb& light, int residual_cap,
                                           RelightTerms terms, unsigned threads) const {
-  if (residual_cap < 0)
-    throw Error("residual cap " + std::to_string(residual_cap) + " (expected 0 or more entries)");
+  check_residual_cap(residual_cap);
   const CompressedField& field = field_;
   const RowMatrixF basis_light = light_in_field_basis(field, light);
   const std::vector<double> products = terms == RelightTerms::all

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <relume/error.hpp>
 
+#include "model/reconstruct_field.hpp"
 #include "relight/relight_layout.hpp"
 
 namespace relume {
@@ -131,6 +132,7 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
     throw Error("OpenCL relighter: " + context.device().label() +
                 " is big-endian; the packed index arrays expect a little-endian device");
 
+  check_relight_memory(field, 1);
   const RelightLayout layout =
       lay_out_field(field, {slice_rows_, tail_rows_, head_entries_}, lights_even_);
   head_ = layout.head;
@@ -380,8 +382,7 @@ void OpenClRelighter::run_pass(const std::vector<const LightRgb*>& lights, int r
 
 void OpenClRelighter::relight_batch_into(const std::vector<LightRgb>& lights, int residual_cap,
                                          std::vector<Image>& images) {
-  if (residual_cap < 0)
-    throw Error("residual cap " + std::to_string(residual_cap) + " (expected 0 or more entries)");
+  check_residual_cap(residual_cap);
   const auto start = std::chrono::steady_clock::now();
   last_timing_ = RelightTiming{};
   last_timing_.frames = int(lights.size());
@@ -412,8 +413,7 @@ Image OpenClRelighter::relight(const LightRgb& light, int residual_cap) {
 }
 
 void OpenClRelighter::relight_residual_into(const LightRgb& light, int residual_cap, Image& image) {
-  if (residual_cap < 0)
-    throw Error("residual cap " + std::to_string(residual_cap) + " (expected 0 or more entries)");
+  check_residual_cap(residual_cap);
   const auto start = std::chrono::steady_clock::now();
   last_timing_ = RelightTiming{};
   last_timing_.frames = 1;

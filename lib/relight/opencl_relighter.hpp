@@ -55,18 +55,20 @@ struct OpenClRelighterOptions {
 
 class OpenClRelighter {
  public:
-  // Checks the field (check_relightable) and uploads it. The context must outlive the relighter;
-  // the field need not.
+  // Checks the field (check_relightable) and that its layout fits the memory budget
+  // (check_relight_memory), and uploads it. The context must outlive the relighter; the field
+  // need not.
   OpenClRelighter(OpenClContext& context, const CompressedField& field,
                   const OpenClRelighterOptions& options = {});
 
-  // One relit image; at most residual_cap >= 0 residual entries per row are used.
-  Image relight(const LightRgb& light, int residual_cap = full_residual);
+  // One relit image; at most residual_cap >= 0 residual entries per row are used
+  // (all_residual_entries: every entry).
+  Image relight(const LightRgb& light, int residual_cap = all_residual_entries);
   // One image per light vector, relit in passes of up to max_batch frames.
   std::vector<Image> relight_batch(const std::vector<LightRgb>& lights,
-                                   int residual_cap = full_residual);
+                                   int residual_cap = all_residual_entries);
   // The residual term E . I alone (the residual SpMV), as an image.
-  Image relight_residual(const LightRgb& light, int residual_cap = full_residual);
+  Image relight_residual(const LightRgb& light, int residual_cap = all_residual_entries);
 
   // The same, writing into caller-owned images: `images` is resized to one image per light
   // vector, and an image that already has the field's size keeps its storage, so a sequence or

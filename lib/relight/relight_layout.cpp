@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstring>
 #include <relume/error.hpp>
+#include <string>
+
+#include "core/memory_budget.hpp"
 
 namespace relume {
 namespace {
@@ -136,6 +139,17 @@ RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutSha
             field.basis(k)[std::size_t(j) * field.lights + i] * block_scale;
       }
   return layout;
+}
+
+void check_relight_memory(const CompressedField& field, std::size_t images) {
+  // The relighter copies W, the bases and the residual into the kernels' layout (at most as large
+  // as the decoded field), and relights into float RGB images of the field's size.
+  const std::uint64_t model = std::uint64_t(field.weights.size()) * 4 + field.bases.size() * 4 +
+                              field.residual.nonzeros() * 8 + field.stored_rows() * 12;
+  const std::uint64_t image = std::uint64_t(field.width) * std::uint64_t(field.height) * 3 * 4;
+  check_memory_need(model + images * image, "relighting " + std::to_string(field.width) + "x" +
+                                                std::to_string(field.height) + " pixels (" +
+                                                std::to_string(images) + " images at once)");
 }
 
 int tall_slice_rows(const CompressedField& field, int row_vector, std::uint32_t head_entries) {

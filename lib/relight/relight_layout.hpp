@@ -1,13 +1,15 @@
 // The OpenCL relighter's device layout of a compressed field, built on the host before upload
-// (kernels/relight.cl reads it). Rows are padded to whole slices; W is slot-major inside each
-// slice. The residual has two regions, each a sequence of row groups stored slot-major (all of a
-// group's rows' entry e, then entry e + 1) and padded to the group's longest row:
+// (kernels/relight.cl reads it), and the memory check of a relighting in it. Rows are padded to
+// whole slices; W is slot-major inside each slice. The residual has two regions, each a sequence
+// of row groups stored slot-major (all of a group's rows' entry e, then entry e + 1) and padded to
+// the group's longest row:
 //   head: entries [0, head_entries) in groups of slice_rows rows (tall on CPUs, so that each
 //         entry index of many rows is one contiguous run and a residual cap reads only its runs);
 //   tail: entries from head_entries on, in groups of tail_rows rows (the row vector), where tall
 //         groups would read too many runs at once. tail_rows 0: no tail (head_entries unlimited).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <relume/compressed_field.hpp>
 #include <vector>
@@ -56,6 +58,11 @@ struct RelightLayout {
 
 RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutShape& shape,
                             int lights_even);
+
+// Refuses (Error with the numbers, core/memory_budget.hpp) a relighting whose field in this
+// layout and `images` output images would not fit the memory budget. The OpenCL relighter checks
+// one image before it lays the field out; a caller that holds more images at once checks those.
+void check_relight_memory(const CompressedField& field, std::size_t images);
 
 // Rows per slice for CPU devices: the tallest power of two from 4096 down to row_vector whose
 // padding (each slice is as wide as its longest row's first head_entries entries, and the last

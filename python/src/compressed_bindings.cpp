@@ -25,7 +25,7 @@ const CompressedField& field_of(const py::object& self) {
 }
 
 int residual_cap(const std::optional<int>& residual) {
-  if (!residual) return full_residual;
+  if (!residual) return all_residual_entries;
   if (*residual < 0)
     throw Error("residual must be a count of entries >= 0 (or None: all), got " +
                 std::to_string(*residual));
@@ -228,7 +228,7 @@ are read-only views of its own memory; a view keeps it alive.)");
       .def(
           "reconstruct",
           [](const CompressedObject& self, std::optional<int> residual) {
-            const int cap = residual ? residual_cap(residual) : all_residual_entries;
+            const int cap = residual_cap(residual);
             py::gil_scoped_release released;
             return reconstruct_field(self.field, cap);
           },
@@ -291,7 +291,7 @@ relume.FileError for a missing, truncated or altered file, naming the section.)"
       "relative_error",
       [](const ReflectanceField& original, const CompressedObject& compressed, bool masked,
          std::optional<int> residual, unsigned threads) {
-        const int cap = residual ? residual_cap(residual) : all_residual_entries;
+        const int cap = residual_cap(residual);
         py::gil_scoped_release released;
         return relative_error(original, compressed.field, masked, cap, threads).mean;
       },

@@ -17,8 +17,9 @@ using namespace pybind11::literals;
 
 namespace {
 
-// The residual thresholds `relume factor` uses by default (apps/factor_command.cpp): float32
-// input is already rounded to ~6e-8 of each value, so smaller residuals are that rounding.
+// The residual thresholds `relume factor` uses by default
+// (apps/commands/compress/factor_command.cpp): float32 input is already rounded to ~6e-8 of each
+// value, so smaller residuals are that rounding.
 constexpr double float32_residual_threshold = 1e-6;
 constexpr double float64_residual_threshold = 1e-9;
 

@@ -89,6 +89,19 @@ def test_a_residual_cap_uses_the_largest_entries_only(compressed, light):
                                    rtol=1e-5, atol=1e-6)
 
 
+def test_a_cap_of_the_longest_row_or_more_keeps_every_entry(compressed, field, light):
+    longest = int(np.diff(compressed.residual_offsets).max())
+    for cap in (longest, 2**31 - 1):
+        for reference in (True, False):
+            np.testing.assert_array_equal(
+                compressed.relight(light, residual=cap, reference=reference),
+                compressed.relight(light, reference=reference))
+        np.testing.assert_array_equal(compressed.reconstruct(residual=cap).values,
+                                      compressed.reconstruct().values)
+        assert (relume.relative_error(field, compressed, residual=cap)
+                == relume.relative_error(field, compressed))
+
+
 def test_relight_batch_equals_one_relight_per_light(compressed, field, sky_map):
     lights = relume.light_vector(field.directions, sky_map, rotate=[0, 45, 90])
     for reference in (True, False):

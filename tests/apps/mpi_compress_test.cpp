@@ -1,11 +1,11 @@
-// Tests of `mpirun -n N relume compress` (the command built with MPI, apps/mpi_ranks.*): 1, 2 and
-// 3 ranks on loopback compress one field (streamed) within 1% of one process's error, to the
-// same container and, measured band by band, the same errors as one rank, a rank count gives the
-// same bytes every time, the report says how the ranks shared the work (with the compressed
-// field gathered in memory, and with it on disk, each rank's strips sent to the root), the root
-// clusters the sample on the cores of the ranks bound beside it (which wait for it), and a
-// failure on one rank (a truncated image under its rows only) ends every rank with that rank's
-// message and leaves no output.
+// Tests of `mpirun -n N relume compress` (the command built with MPI,
+// apps/commands/compress/mpi_ranks.*): 1, 2 and 3 ranks on loopback compress one field (streamed)
+// within 1% of one process's error, to the same container and, measured band by band, the same
+// errors as one rank, a rank count gives the same bytes every time, the report says how the ranks
+// shared the work (with the compressed field gathered in memory, and with it on disk, each rank's
+// strips sent to the root), the root clusters the sample on the cores of the ranks bound beside it
+// (which wait for it), and a failure on one rank (a truncated image under its rows only) ends every
+// rank with that rank's message and leaves no output.
 #include <gtest/gtest.h>
 
 #include <algorithm>

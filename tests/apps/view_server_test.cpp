@@ -205,9 +205,9 @@ TEST_F(ViewServer, ExrFrameEqualsTheRelightersImage) {
   const Eigen::Vector3d direction(0.3, 0.5, 0.8), color(1.0, 0.5, 0.25);
   const LightRgb light = LightInterpolation(field.directions).light_vector({direction, color, 0});
   Relighter relighter(field);
-  for (const int cap : {full_residual, 2}) {
+  for (const int cap : {all_residual_entries, 2}) {
     const Image expected = relighter.relight(light, cap);
-    const std::string residual = cap == full_residual ? "all" : std::to_string(cap);
+    const std::string residual = cap == all_residual_entries ? "all" : std::to_string(cap);
     const Image served = frame(
         "/frame?light=0.3,0.5,0.8&color=1,0.5,0.25&residual=" + residual + "&format=exr", ".exr");
     ASSERT_EQ(served.pixels.size(), expected.pixels.size());

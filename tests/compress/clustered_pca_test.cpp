@@ -153,7 +153,7 @@ TEST(ClusteredPca, RelightsThroughTheSameKernelsAsTheL1Method) {
   for (int i = 0; i < light.size(); ++i) light.data()[i] = uniform(random);
   const Image reference = relight_compressed_reference(stored, light);
   Relighter relighter(stored);  // OpenCL (PoCL in the tests)
-  for (const int cap : {0, 2, full_residual}) {
+  for (const int cap : {0, 2, all_residual_entries}) {
     const Image image = relighter.relight(light, cap);
     const Image expected = relight_compressed_reference(stored, light, cap);
     ASSERT_EQ(image.pixels.size(), expected.pixels.size());

@@ -44,7 +44,7 @@ std::vector<double> expected_stored_row(const CompressedField& field, std::size_
                 field.bases[(std::size_t(k) * field.terms + j) * field.lights + i];
   const std::uint32_t begin = field.residual.row_offsets[row];
   const std::uint32_t end = field.residual.row_offsets[row + 1];
-  for (std::uint32_t e = begin; e < end && (cap < 0 || e < begin + std::uint32_t(cap)); ++e)
+  for (std::uint32_t e = begin; e < end && e - begin < std::uint32_t(cap); ++e)
     out[field.residual.light_index[e]] += field.residual.values[e];
   return out;
 }
@@ -64,7 +64,7 @@ TEST(ReconstructField, StoredRowsAreWFPlusResidualAndOthersAreZero) {
   for (std::size_t r = 0; r < field.stored_rows(); ++r) {
     const std::uint32_t p = field.stored_function[r];
     stored[p] = true;
-    const std::vector<double> expected = expected_stored_row(field, r, -1);
+    const std::vector<double> expected = expected_stored_row(field, r, all_residual_entries);
     for (int i = 0; i < 10; ++i)
       EXPECT_NEAR(result.values(p, i), expected[i], 1e-6) << "function " << p << " light " << i;
   }
@@ -86,7 +86,8 @@ TEST(ReconstructField, ResidualCapKeepsTheLargestEntriesOfEachRow) {
   const std::uint32_t first = field.residual.row_offsets[long_row];
   const ReflectanceField none = reconstruct_field(field, 0);
   const ReflectanceField one = reconstruct_field(field, 1);
-  const ReflectanceField all = reconstruct_field(field, 1000);
+  // The longest row's length keeps every entry, as all_residual_entries (the default) does.
+  const ReflectanceField all = reconstruct_field(field, int(field.residual.longest_row()));
   const std::vector<double> model = expected_stored_row(field, long_row, 0);
   for (int i = 0; i < 10; ++i) EXPECT_NEAR(none.values(p, i), model[i], 1e-6);
   // Cap 1 differs from cap 0 only at the row's first (largest) entry's light, by its value.
@@ -96,7 +97,7 @@ TEST(ReconstructField, ResidualCapKeepsTheLargestEntriesOfEachRow) {
                 i == int(light) ? field.residual.values[first] : 0.0f, 1e-6);
   const ReflectanceField uncapped = reconstruct_field(field);
   EXPECT_EQ(all.values, uncapped.values);
-  EXPECT_THROW(reconstruct_field(field, -2), Error);
+  EXPECT_THROW(reconstruct_field(field, -1), Error);
 }
 
 TEST(ReconstructField, HaarStoredRowsAreTransformedBack) {
@@ -104,7 +105,7 @@ TEST(ReconstructField, HaarStoredRowsAreTransformedBack) {
   field.transform = BasisTransform::haar;
   const ReflectanceField result = reconstruct_field(field);
   for (std::size_t r = 0; r < field.stored_rows(); r += 7) {
-    const std::vector<double> stored = expected_stored_row(field, r, -1);
+    const std::vector<double> stored = expected_stored_row(field, r, all_residual_entries);
     std::vector<float> expected(stored.begin(), stored.end());
     haar_inverse(expected.data(), 10, 1);
     for (int i = 0; i < 10; ++i)
@@ -113,7 +114,7 @@ TEST(ReconstructField, HaarStoredRowsAreTransformedBack) {
   // reconstruct_stored_row stays in the stored (Haar) basis.
   std::vector<float> row(10);
   reconstruct_stored_row(field, 3, all_residual_entries, row.data());
-  const std::vector<double> stored = expected_stored_row(field, 3, -1);
+  const std::vector<double> stored = expected_stored_row(field, 3, all_residual_entries);
   for (int i = 0; i < 10; ++i) EXPECT_NEAR(row[i], stored[i], 1e-6);
 }
 
@@ -191,9 +192,10 @@ TEST(DecompressCommand, WritesAFieldFolderThatLoadsBack) {
   CompressedField field = sample_field();
   field.intensities.col(0).setConstant(2.0f);  // written multiplied back, loaded divided again
   write_container(dir / "a.relume", field);
-  for (const int cap : {-1, 1}) {
+  for (const int cap : {all_residual_entries, 1}) {
     const auto out = dir / ("field" + std::to_string(cap));
-    const std::string residual = cap < 0 ? "" : " --residual " + std::to_string(cap);
+    const std::string residual =
+        cap == all_residual_entries ? "" : " --residual " + std::to_string(cap);
     const auto run = testing::run_relume("decompress '" + (dir / "a.relume").string() + "' -o '" +
                                          out.string() + "'" + residual);
     ASSERT_EQ(run.exit_code, 0) << run.output;

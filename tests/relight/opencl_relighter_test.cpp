@@ -74,7 +74,7 @@ TEST(CompressedRelightReference, MatchesTheDenseReconstruction) {
   // relight it as R~ . I: another order of the same sums.
   const CompressedField field = random_compressed_field(small_shape(1));
   const LightRgb light = random_light_vector(field.lights, 2);
-  for (const int cap : {0, 3, full_residual}) {
+  for (const int cap : {0, 3, all_residual_entries}) {
     const Image image = relight_compressed_reference(field, light, cap);
     std::vector<double> expected(std::size_t(field.functions()), 0.0);
     for (std::size_t s = 0; s < field.stored_rows(); ++s) {
@@ -123,7 +123,7 @@ TEST(OpenClRelighter, MatchesTheReferenceForEveryResidualCap) {
   OpenClRelighter relighter(pocl(), field);
   ASSERT_EQ(relighter.widest_residual_row(), 7);
   // 0: basis only; 3: fewer than most rows hold; 7: exactly the widest; 50: more than any.
-  for (const int cap : {0, 3, 7, 50, full_residual}) {
+  for (const int cap : {0, 3, 7, 50, all_residual_entries}) {
     const LightRgb light = random_light_vector(field.lights, 100 + std::uint64_t(cap % 1000));
     const Image expected = relight_compressed_reference(field, light, cap);
     const Image image = relighter.relight(light, cap);
@@ -169,7 +169,7 @@ TEST(OpenClRelighter, QuantizedFieldsRelightFromTheirIntegersAtEveryPrecision) {
     std::vector<LightRgb> lights;
     for (int b = 0; b < 4; ++b)
       lights.push_back(random_light_vector(field.lights, 700 + std::uint64_t(terms * 10 + b)));
-    for (const int cap : {0, 3, full_residual}) {
+    for (const int cap : {0, 3, all_residual_entries}) {
       const Image single = relighter.relight(lights[0], cap);
       EXPECT_LT(relative_error(single, relight_compressed_reference(field, lights[0], cap)),
                 float_tolerance)
@@ -213,7 +213,7 @@ TEST(OpenClRelighter, ExtremeDynamicRangeStaysAccurateAtEveryBrightness) {
   light.row(3) *= 1.4e5f;  // a sun among dim lights
   light.row(17) *= 1e-4f;
   OpenClRelighter relighter(pocl(), field);
-  for (const int cap : {0, full_residual}) {
+  for (const int cap : {0, all_residual_entries}) {
     const Image expected = relight_compressed_reference(field, light, cap);
     const Image image = relighter.relight(light, cap);
     std::vector<double> difference(decades, 0.0), energy(decades, 0.0);
@@ -249,7 +249,7 @@ TEST(OpenClRelighter, ClusterProductsMatchTheReference) {
 TEST(OpenClRelighter, ResidualSpmvMatchesTheReference) {
   const CompressedField field = random_compressed_field(small_shape(13));
   OpenClRelighter relighter(pocl(), field);
-  for (const int cap : {0, 2, full_residual}) {
+  for (const int cap : {0, 2, all_residual_entries}) {
     const LightRgb light = random_light_vector(field.lights, 14 + std::uint64_t(cap % 100));
     const Image expected =
         relight_compressed_reference(field, light, cap, RelightTerms::residual_only);
@@ -335,7 +335,7 @@ TEST(OpenClRelighter, EveryRowVectorWidthSliceAndHeadGivesTheSameImage) {
     OpenClRelighter relighter(pocl(), field, options);
     const std::string name = "row vector " + std::to_string(layout.row_vector) + ", slice " +
                              std::to_string(layout.slice) + ", head " + std::to_string(layout.head);
-    for (const int cap : {2, 5, full_residual}) {
+    for (const int cap : {2, 5, all_residual_entries}) {
       EXPECT_LT(relative_error(relighter.relight(lights[0], cap),
                                relight_compressed_reference(field, lights[0], cap)),
                 float_tolerance)
@@ -411,7 +411,7 @@ TEST(OpenClRelighter, ReportsKernelTimesAndCappedBytes) {
   // 41 lights: one-byte light indices, so 5 bytes per entry read.
   EXPECT_EQ(relighter.residual_bytes(0), 0u);
   EXPECT_EQ(relighter.residual_bytes(3), rows * 3 * 5);
-  EXPECT_EQ(relighter.residual_bytes(full_residual), rows * 7 * 5);
+  EXPECT_EQ(relighter.residual_bytes(all_residual_entries), rows * 7 * 5);
   // Equal rows pad nothing but the unused rows of the last slice.
   const std::uint64_t slices = (rows + relighter.slice_rows() - 1) / relighter.slice_rows();
   const std::uint64_t slots = slices * relighter.slice_rows() * 7;
@@ -425,7 +425,7 @@ TEST(OpenClRelighter, ReportsKernelTimesAndCappedBytes) {
   for (const auto& kernel : timing.kernels) EXPECT_GT(kernel.seconds, 0) << kernel.kernel;
   EXPECT_GE(timing.wall_seconds, timing.kernel_seconds());
   const std::uint64_t capped_rows_bytes = timing.kernel("rows").bytes;
-  relighter.relight(random_light_vector(field.lights, 92), full_residual);
+  relighter.relight(random_light_vector(field.lights, 92), all_residual_entries);
   EXPECT_EQ(relighter.last_timing().kernel("rows").bytes - capped_rows_bytes, rows * 4 * 5);
 }
 

@@ -11,14 +11,15 @@
 #include <optional>
 #include <relume/error.hpp>
 
+#include "command_registry.hpp"
 #include "commands/bench/bench_container_sweep.hpp"
 #include "commands/bench/bench_runs.hpp"
-#include "command_registry.hpp"
-#include "core/progress.hpp"
 #include "core/json_report.hpp"
+#include "core/progress.hpp"
 #include "model/basis_alignment.hpp"
 #include "model/quantization.hpp"
 #include "model/random_compressed_field.hpp"
+#include "options/renderer_options.hpp"
 
 namespace relume {
 namespace {
@@ -28,7 +29,7 @@ struct BenchOptions {
   std::string json;
   std::vector<int> frames{16};  // batch sizes of the batched relight
   int repeats = 9;
-  int residual_cap = full_residual;
+  int residual_cap = all_residual_entries;
   RandomFieldShape shape;
   std::string precision = "float32";  // of the random field's W and residual values
   std::string container;
@@ -197,9 +198,7 @@ void run_bench(const BenchOptions& options) {
                  "entries per function, %.0f%% stored, cap %s\n",
                  shape.width, shape.height, shape.channels, shape.lights, shape.clusters,
                  shape.terms, shape.residual_per_function, 100 * shape.stored_fraction,
-                 options.residual_cap == full_residual
-                     ? "all"
-                     : std::to_string(options.residual_cap).c_str());
+                 residual_cap_text(options.residual_cap).c_str());
   else
     std::fprintf(stderr,
                  "bench: container %s: %dx%dx%d, %d lights, %d clusters, %d terms, %zu stored "

@@ -19,14 +19,11 @@ std::vector<ResidualPoint> container_sweep_points(const CompressedField& contain
   std::vector<ResidualPoint> points;
   for (const double percent : {0.0, 3.0, 5.0, 10.0, 20.0, 30.0})
     points.push_back({ResidualBudget{0, percent}.entries_for(container.lights), percent, {}});
-  points.push_back({full_residual, {}, {}});
+  points.push_back({all_residual_entries, {}, {}});
 
   if (original_field.empty()) {
     for (ResidualPoint& point : points)
-      point.error =
-          relative_error(container, container,
-                         point.cap == full_residual ? all_residual_entries : point.cap, threads)
-              .mean;
+      point.error = relative_error(container, container, point.cap, threads).mean;
     return points;
   }
   FieldLoadOptions load;
@@ -34,10 +31,7 @@ std::vector<ResidualPoint> container_sweep_points(const CompressedField& contain
   const ReflectanceField original = load_field(original_field, load);
   for (ResidualPoint& point : points) {
     try {
-      point.error =
-          relative_error(original, container, true,
-                         point.cap == full_residual ? all_residual_entries : point.cap, threads)
-              .mean;
+      point.error = relative_error(original, container, true, point.cap, threads).mean;
     } catch (const Error& error) {
       throw Error("--field " + original_field + " does not match the container " +
                   container_path.string() + ": " + error.what());

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "opencl/bandwidth_ceiling.hpp"  // median_seconds
+#include "options/renderer_options.hpp"  // residual_cap_text
 
 namespace relume {
 
@@ -25,7 +26,7 @@ BenchRecord make_record(const std::string& platform, const std::string& device,
 }
 
 nlohmann::ordered_json residual_cap_json(int cap) {
-  return cap == full_residual ? nlohmann::ordered_json("all") : nlohmann::ordered_json(cap);
+  return cap == all_residual_entries ? nlohmann::ordered_json("all") : nlohmann::ordered_json(cap);
 }
 
 nlohmann::ordered_json to_json(const BenchRecord& record) {
@@ -113,15 +114,14 @@ void print_sweep_table(const std::vector<BenchRecord>& records) {
   for (const auto& record : records) {
     if (!record.in_sweep()) continue;
     const ResidualPoint& point = *record.residual;
-    char residual[16] = "all", cap[16] = "all", wall[16] = "-";
+    char residual[16] = "all", wall[16] = "-";
     if (point.percent) std::snprintf(residual, sizeof residual, "%g%%", *point.percent);
-    if (point.cap != full_residual) std::snprintf(cap, sizeof cap, "%d", point.cap);
     if (record.wall_seconds)
       std::snprintf(wall, sizeof wall, "%.1f", record.frames / *record.wall_seconds);
     std::printf("%-44.44s %-16s %8s %5s %9.2f %9.1f %11s %8.2f %7s %11.4g\n", record.device.c_str(),
-                record.kernel.c_str(), residual, cap, 1e-6 * double(record.bytes) / record.frames,
-                record.frames / record.seconds, wall, record.gbps(),
-                percent_of_peak(record).c_str(), *point.error);
+                record.kernel.c_str(), residual, residual_cap_text(point.cap).c_str(),
+                1e-6 * double(record.bytes) / record.frames, record.frames / record.seconds, wall,
+                record.gbps(), percent_of_peak(record).c_str(), *point.error);
   }
 }
 

@@ -5,19 +5,18 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <relume/compressed_field.hpp>
 #include <string>
 #include <vector>
-
-#include "relight/compressed_relight_reference.hpp"  // full_residual
 
 namespace relume {
 
 // One residual setting of the relighting records. A point of the --container sweep also carries
 // its share of the lights and the error of the field with the residual cut to `cap`.
 struct ResidualPoint {
-  int cap = full_residual;        // entries per row
-  std::optional<double> percent;  // sweep: percentage of the lights; nullopt for the full residual
-  std::optional<double> error;    // sweep: paper Eq. 16 of the capped field
+  int cap = all_residual_entries;  // entries per row
+  std::optional<double> percent;   // sweep: percentage of the lights; nullopt for the full residual
+  std::optional<double> error;     // sweep: paper Eq. 16 of the capped field
 };
 
 struct BenchRecord {

@@ -20,6 +20,7 @@
 #include "options/light_source_options.hpp"
 #include "options/output_paths.hpp"
 #include "options/renderer_options.hpp"
+#include "relight/relight_layout.hpp"
 
 namespace relume {
 namespace {
@@ -60,7 +61,7 @@ void relight_container(const RelightOptions& options) {
     black_outside(image, mask);
   }
   detail("relight: %s, residual cap %s, kernels %.2f ms, %llu negative values set to 0",
-         renderer.device_name().c_str(), cap == full_residual ? "all" : std::to_string(cap).c_str(),
+         renderer.device_name().c_str(), residual_cap_text(cap).c_str(),
          1e3 * renderer.last_kernel_seconds(),
          static_cast<unsigned long long>(renderer.last_projected_values()));
   write_image(options.output, image,

@@ -1,7 +1,7 @@
 // `relume relight-sequence`: an animated relighting of a .relume container: one map rotated by a
 // fixed step per frame, one map per frame from a list, a moved light circling the object
 // (--light-orbit) or following a file of directions (--light-path), written as numbered images
-// and/or a video (--video, apps/video_writer.hpp). Frames are relit B at a time in
+// and/or a video (--video, apps/commands/relight/video_writer.hpp). Frames are relit B at a time in
 // one pass over W and the residual, written as numbered images, and the run reports frames/s, the
 // kernels' GB/s and, with --compare, each frame's error against the full-residual render.
 #include <chrono>
@@ -15,24 +15,25 @@
 #include <relume/error.hpp>
 #include <relume/image.hpp>
 #include <relume/lighting.hpp>
+#include <relume/relight.hpp>
 
 #include "command_registry.hpp"
+#include "commands/relight/video_writer.hpp"
 #include "container/container.hpp"
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
-#include "core/progress.hpp"
-#include "options/directional_light_options.hpp"
-#include "field/light_file.hpp"
-#include "options/frame_pattern.hpp"
-#include "image/image_difference.hpp"
-#include "options/image_output_options.hpp"
 #include "core/json_report.hpp"
+#include "core/progress.hpp"
+#include "field/light_file.hpp"
+#include "image/image_difference.hpp"
 #include "lighting/environment_map.hpp"
+#include "options/directional_light_options.hpp"
+#include "options/frame_pattern.hpp"
+#include "options/image_output_options.hpp"
 #include "options/output_paths.hpp"
-#include "relight/compressed_relight_reference.hpp"
 #include "options/renderer_options.hpp"
 #include "options/rotation_option.hpp"
-#include "commands/relight/video_writer.hpp"
+#include "relight/relight_layout.hpp"
 
 namespace relume {
 namespace {
@@ -212,7 +213,7 @@ void run_sequence(const SequenceOptions& options) {
     kernel_seconds += renderer.last_kernel_seconds();
     kernel_bytes += renderer.last_kernel_bytes();
     std::vector<Image> references;
-    if (options.compare) references = renderer.relight_batch(batch, full_residual);
+    if (options.compare) references = renderer.relight_batch(batch, all_residual_entries);
     for (std::size_t b = 0; b < count; ++b) {
       const int frame = static_cast<int>(first + b);
       if (!write) {
@@ -245,8 +246,8 @@ void run_sequence(const SequenceOptions& options) {
   const double gbps = kernel_seconds > 0 ? 1e-9 * kernel_bytes / kernel_seconds : 0;
   say("%zu frames on %s, batch %d, residual cap %s: %.1f frames/s relighting (%.2f s), "
       "kernels %.2f GB/s",
-      lights.size(), renderer.device_name().c_str(), options.batch,
-      cap == full_residual ? "all" : std::to_string(cap).c_str(), fps, relight_seconds, gbps);
+      lights.size(), renderer.device_name().c_str(), options.batch, residual_cap_text(cap).c_str(),
+      fps, relight_seconds, gbps);
   if (options.compare) {
     double worst = 0;
     for (const auto& f : frames) worst = std::max(worst, f["error"].get<double>());
@@ -256,7 +257,7 @@ void run_sequence(const SequenceOptions& options) {
     const nlohmann::ordered_json report = {{"device", renderer.device_name()},
                                            {"frames", lights.size()},
                                            {"batch", options.batch},
-                                           {"residual_cap", cap == full_residual ? -1 : cap},
+                                           {"residual_cap", cap == all_residual_entries ? -1 : cap},
                                            {"setup_seconds", setup_seconds},
                                            {"relight_seconds", relight_seconds},
                                            {"frames_per_second", fps},

@@ -20,7 +20,7 @@ RelitFrame FrameRenderer::relight(const LightRgb& light, int residual_cap) {
   frame.kernel_ms = 1e3 * relighter_.last_kernel_seconds();
   if (residual_cap >= longest_row_) return frame;
   if (reference_light_.rows() != light.rows() || reference_light_ != light) {
-    reference_ = relighter_.relight(light, full_residual);
+    reference_ = relighter_.relight(light, all_residual_entries);
     reference_light_ = light;
   }
   frame.reference = reference_;

@@ -29,7 +29,7 @@ class FrameRenderer {
   // Throws Error as Relighter does (an inconsistent field, no OpenCL device that matches).
   FrameRenderer(const CompressedField& field, const RelighterOptions& options);
 
-  // Thread-safe. residual_cap >= 0 (full_residual: every entry).
+  // Thread-safe. residual_cap >= 0 (all_residual_entries: every entry).
   RelitFrame relight(const LightRgb& light, int residual_cap);
 
   std::string device_name() const { return device_name_; }

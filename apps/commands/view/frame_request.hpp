@@ -49,7 +49,7 @@ struct FrameLight {
 struct FrameRequest {
   FrameLight light;
   double exposure = 0;               // stops, for PNG and JPEG (EXR frames are linear, unexposed)
-  int residual_cap = full_residual;  // residual entries per function (full_residual: all)
+  int residual_cap = all_residual_entries;  // residual entries per function
   FrameFormat format = FrameFormat::png;
   FrameView view = FrameView::image;
 };

@@ -1,7 +1,7 @@
 // `relume view`: an interactive viewer in the browser. Serves a page on which the user drags a
 // light across the object (or turns an environment map), sets exposure, residual cap and light
 // colour, and sees the error of the cap or the stored pixels; every frame is relit on the server
-// by the OpenCL relighter (apps/view/, docs/viewer.md).
+// by the OpenCL relighter (apps/commands/view/, docs/viewer.md).
 #include <memory>
 
 #include "command_registry.hpp"

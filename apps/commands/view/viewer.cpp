@@ -3,15 +3,16 @@
 
 #include <cstdio>
 
+#include "commands/view/frame_views.hpp"
 #include "container/container.hpp"
 #include "core/elapsed_time.hpp"
-#include "options/directional_light_options.hpp"
 #include "image/image_bytes.hpp"
+#include "options/directional_light_options.hpp"
 #include "options/image_output_options.hpp"
 #include "options/light_source_options.hpp"
 #include "options/number_or_auto.hpp"
 #include "options/rotation_option.hpp"
-#include "commands/view/frame_views.hpp"
+#include "relight/relight_layout.hpp"
 
 namespace relume {
 namespace {

@@ -30,9 +30,6 @@ struct EncodedFrame {
   std::vector<std::pair<std::string, std::string>> headers;  // X-Relume-* (docs/viewer.md)
 };
 
-// "all" for full_residual, else the count.
-std::string residual_cap_text(int residual_cap);
-
 class Viewer {
  public:
   // Reads the container and the maps and uploads the field. Throws Error.

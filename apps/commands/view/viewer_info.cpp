@@ -8,10 +8,6 @@
 
 namespace relume {
 
-std::string residual_cap_text(int residual_cap) {
-  return residual_cap == full_residual ? "all" : std::to_string(residual_cap);
-}
-
 nlohmann::ordered_json Viewer::info() const {
   nlohmann::ordered_json directions = nlohmann::ordered_json::array();
   for (int i = 0; i < field_.directions.rows(); ++i)

@@ -1,4 +1,4 @@
-// The viewer's page, embedded in the binary at build time from apps/view/page/ by
+// The viewer's page, embedded in the binary at build time from apps/commands/view/page/ by
 // cmake/embed_text.cmake (plain HTML, JavaScript and CSS: no build step, nothing fetched from
 // elsewhere, so it works offline).
 #pragma once

@@ -1,6 +1,6 @@
 // `relume bench --container` in the device-only build (RELUME_DEVICE_BENCH_ONLY,
 // cmake/device_bench.cmake), which has no container reader and no image I/O: it says so. The
-// full build links apps/bench/bench_container_sweep.cpp instead.
+// full build links apps/commands/bench/bench_container_sweep.cpp instead.
 #include <relume/error.hpp>
 
 #include "commands/bench/bench_container_sweep.hpp"
