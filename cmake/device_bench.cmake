@@ -27,6 +27,7 @@ add_executable(relume
   "${apps}/commands/inspect/devices_command.cpp"
   "${apps}/commands/bench/bench_command.cpp"
   "${apps}/commands/bench/bench_runs.cpp" "${apps}/commands/bench/bench_records.cpp"
+  "${apps}/commands/bench/bench_report.cpp"
   "${apps}/commands/bench/device_only/container_sweep_unavailable.cpp")
 target_include_directories(relume PRIVATE "${apps}")
 target_link_libraries(relume PRIVATE relume_device_library CLI11::CLI11)

@@ -13,6 +13,7 @@
 
 #include "command_registry.hpp"
 #include "commands/bench/bench_container_sweep.hpp"
+#include "commands/bench/bench_report.hpp"
 #include "commands/bench/bench_runs.hpp"
 #include "core/json_report.hpp"
 #include "core/progress.hpp"
@@ -23,32 +24,6 @@
 
 namespace relume {
 namespace {
-
-struct BenchOptions {
-  std::vector<std::string> devices;
-  std::string json;
-  std::vector<int> frames{16};  // batch sizes of the batched relight
-  int repeats = 9;
-  int residual_cap = all_residual_entries;
-  RandomFieldShape shape;
-  std::string precision = "float32";  // of the random field's W and residual values
-  std::string container;
-  std::string original_field;
-  int assign_rows = 16384;
-  int assign_candidates = 3;
-  std::uint64_t ceiling_mib = 256;
-  bool reference = true;
-  unsigned threads = 0;
-  OpenClRelighterOptions relighter;
-};
-
-// The field relit, the residual points it is relit at and whether the GEMV and SpMV get records
-// of their own (only for the random field).
-struct RelightSubject {
-  CompressedField field;
-  std::vector<ResidualPoint> points;
-  bool with_parts = true;
-};
 
 // `options.repeats` rounds on one device, each running the ceiling kernels, every relighting kernel
 // at every point and the assignment kernel once.
@@ -126,58 +101,6 @@ RelightSubject relight_subject(const BenchOptions& options) {
   subject.points = std::move(sweep.points);
   subject.with_parts = false;
   return subject;
-}
-
-nlohmann::ordered_json field_json(const BenchOptions& options, const CompressedField& field) {
-  const auto& shape = options.shape;
-  if (options.container.empty())
-    return {{"source", "random"},
-            {"width", shape.width},
-            {"height", shape.height},
-            {"channels", shape.channels},
-            {"lights", shape.lights},
-            {"clusters", shape.clusters},
-            {"terms", shape.terms},
-            {"residual_per_function", shape.residual_per_function},
-            {"stored_fraction", shape.stored_fraction},
-            {"precision", options.precision},
-            {"stored_rows", field.stored_rows()},
-            {"seed", shape.seed}};
-  return {{"source", "container"},
-          {"path", options.container},
-          {"width", field.width},
-          {"height", field.height},
-          {"channels", field.channels},
-          {"lights", field.lights},
-          {"clusters", field.clusters},
-          {"terms", field.terms},
-          {"stored_rows", field.stored_rows()},
-          {"residual_entries", field.residual.nonzeros()}};
-}
-
-nlohmann::ordered_json sweep_json(const BenchOptions& options, const RelightSubject& subject) {
-  nlohmann::ordered_json points = nlohmann::ordered_json::array();
-  for (const ResidualPoint& point : subject.points)
-    points.push_back({{"residual_percent", point.percent ? nlohmann::ordered_json(*point.percent)
-                                                         : nlohmann::ordered_json("all")},
-                      {"residual_cap", residual_cap_json(point.cap)},
-                      {"error", *point.error}});
-  return {{"error_against", options.original_field.empty() ? "container" : "field"},
-          {"original_field", options.original_field.empty()
-                                 ? nlohmann::ordered_json()
-                                 : nlohmann::ordered_json(options.original_field)},
-          {"points", points}};
-}
-
-// What the report says of a benched device: its names, driver and size.
-nlohmann::ordered_json device_json(const OpenClDevice& device) {
-  return {{"platform", device.platform_name},
-          {"device", device.device_name},
-          {"type", device.type},
-          {"version", device.version},
-          {"driver_version", device.driver_version},
-          {"compute_units", device.compute_units},
-          {"global_memory_bytes", device.global_memory_bytes}};
 }
 
 void run_bench(const BenchOptions& options) {
