@@ -149,6 +149,12 @@ class Compressed:
     @property
     def residual_values(self) -> Float32Array: ...
     @property
+    def dark_pixels(self) -> npt.NDArray[np.uint32]:
+        """(n,), pixels y * width + x relit by the dark model."""
+    @property
+    def dark(self) -> Float32Array:
+        """(channels, lights), the dark model; (0, lights) when no pixel is dark."""
+    @property
     def weights_precision(self) -> str: ...
     @property
     def residual_precision(self) -> str: ...
@@ -181,6 +187,8 @@ class Compressed:
         residual_precision: Optional[str] = None,
         light_index: str = "auto",
     ) -> None: ...
+    def export_npz(self, path: PathLike) -> None:
+        """The arrays as a NumPy .npz, as `relume export --to npz` writes it."""
     def file_size(
         self,
         *,

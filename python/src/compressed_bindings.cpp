@@ -1,5 +1,6 @@
 // relume.Compressed (a compressed field: its parts as NumPy views, relighting on an OpenCL device
-// or with the CPU reference, reconstruction, saving), relume.open and relume.relative_error.
+// or with the CPU reference, reconstruction, saving, NumPy export), relume.open and
+// relume.relative_error.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -13,6 +14,7 @@
 #include "compressed_object.hpp"
 #include "container/container.hpp"
 #include "errors.hpp"
+#include "export/npz_export.hpp"
 
 namespace relume::python {
 
@@ -77,9 +79,10 @@ once and kept for later calls.)";
 void bind_compressed(py::module_& module) {
   py::class_<CompressedObject> compressed(module, "Compressed", R"(A compressed reflectance field:
     R[p, :] ~ weights[s, :] @ bases[cluster[s]] + residual row s
-for every stored function p = stored_function[s] (functions outside the mask or all zero are
-not stored and relight to 0). Made by relume.compress or relume.open. Its array attributes
-are read-only views of its own memory; a view keeps it alive.)");
+for every stored function p = stored_function[s]; the channels of each dark pixel are the rows
+of the dark model, and the other functions (outside the mask or all zero) relight to 0. Made
+by relume.compress or relume.open. Its array attributes are read-only views of its own
+memory; a view keeps it alive.)");
   compressed.def_property_readonly("width", [](const CompressedObject& c) { return c.field.width; })
       .def_property_readonly("height", [](const CompressedObject& c) { return c.field.height; })
       .def_property_readonly("channels", [](const CompressedObject& c) { return c.field.channels; })
@@ -167,6 +170,22 @@ are read-only views of its own memory; a view keeps it alive.)");
       .def_property_readonly(
           "weights_precision",
           [](const CompressedObject& c) { return to_string(c.storage.weights); },
+      .def_property_readonly(
+          "dark_pixels",
+          [](const py::object& self) {
+            const CompressedField& f = field_of(self);
+            return readonly_view(f.dark_pixels.data(), {py::ssize_t(f.dark_pixels.size())}, self);
+          },
+          "uint32 (n,): pixels y * width + x at the noise level, relit by the dark model.")
+      .def_property_readonly(
+          "dark",
+          [](const py::object& self) {
+            const CompressedField& f = field_of(self);
+            return readonly_view(f.dark.data(), {py::ssize_t(f.dark.size()) / f.lights, f.lights},
+                                 self);
+          },
+          "float32 (channels, lights), in the basis of bases: the dark model, (0, lights) when no "
+          "pixel is dark.")
           "How save() stores W by default: 'float32' or 'float16'.")
       .def_property_readonly(
           "residual_precision",
@@ -260,6 +279,19 @@ light_index: 'auto', '8', '16' or '32' bits.)")
                 storage_with(self, weights_precision, residual_precision, light_index);
             py::gil_scoped_release released;
             return plan_container(self.field, options).file_bytes;
+      .def(
+          "export_npz",
+          [](const CompressedObject& self, const std::filesystem::path& path) {
+            with_file_errors([&] {
+              py::gil_scoped_release released;
+              write_compressed_field_npz(path, self.field);
+            });
+          },
+          "path"_a,
+          R"(Write the field's arrays as a NumPy .npz, as `relume export --to npz` does
+(atomically; numpy.load reads it without pickle): W, F, the clusters, the residual as CSR,
+the dark model, the mask, lights and intensities, the basis transform and the quantization,
+with a 'description' entry that says how they rebuild the field and its images exactly.)")
           },
           py::kw_only(), "weights_precision"_a = py::none(), "residual_precision"_a = py::none(),
           "light_index"_a = "auto",

@@ -1,7 +1,8 @@
 """relume.Compressed: its arrays are read-only views of its own memory and hold what a direct
 NumPy evaluation of R ~ W F + E needs; relighting (CPU reference and OpenCL, whole and batched,
 with a residual cap) equals `relume relight` and that evaluation; reconstruct equals
-`relume decompress`; save and open round-trip; and bad input raises relume errors."""
+`relume decompress`; export_npz writes what `relume export` does; save and open round-trip; and
+bad input raises relume errors."""
 import json
 import os
 
@@ -119,6 +120,22 @@ def test_reconstruct_equals_the_command_decompress(compressed, saved, tmp_path):
     np.testing.assert_array_equal(ours.values, relume.load(tmp_path / "back").values)
     full = compressed.reconstruct()
     assert not np.array_equal(full.values, ours.values)
+
+
+def test_export_npz_writes_what_the_command_exports(compressed, saved, tmp_path):
+    run_relume("export", saved, "--to", "npz", tmp_path / "cli.npz")
+    opened = relume.open(saved)
+    opened.export_npz(tmp_path / "ours.npz")
+    assert (tmp_path / "ours.npz").read_bytes() == (tmp_path / "cli.npz").read_bytes()
+    archive = np.load(tmp_path / "ours.npz")
+    for ours, theirs in (("weights", "W"), ("bases", "F"), ("cluster", "cluster"),
+                         ("residual_offsets", "residual_indptr"), ("dark_pixels", "dark_pixels"),
+                         ("dark", "dark"), ("intensities", "intensities"), ("mask", "mask")):
+        np.testing.assert_array_equal(getattr(compressed, ours), archive[theirs], ours)
+    assert str(archive["transform"]) == "0" and compressed.transform == "identity"
+    assert float(archive["weight_step"]) > 0, "the default storage is quantized"
+    with pytest.raises(relume.FileError, match="no-folder"):
+        opened.export_npz(tmp_path / "no-folder" / "x.npz")
 
 
 def test_save_and_open_round_trip(compressed, saved, tmp_path):
