@@ -15,6 +15,8 @@
 #include "container/container.hpp"
 #include "errors.hpp"
 #include "export/npz_export.hpp"
+#include "lighting/light_interpolation.hpp"
+#include "moved_light.hpp"
 
 namespace relume::python {
 
@@ -168,9 +170,6 @@ memory; a view keeps it alive.)");
           },
           "float32 (nonzeros,): residual values, each row sorted by |value| descending.")
       .def_property_readonly(
-          "weights_precision",
-          [](const CompressedObject& c) { return to_string(c.storage.weights); },
-      .def_property_readonly(
           "dark_pixels",
           [](const py::object& self) {
             const CompressedField& f = field_of(self);
@@ -186,6 +185,9 @@ memory; a view keeps it alive.)");
           },
           "float32 (channels, lights), in the basis of bases: the dark model, (0, lights) when no "
           "pixel is dark.")
+      .def_property_readonly(
+          "weights_precision",
+          [](const CompressedObject& c) { return to_string(c.storage.weights); },
           "How save() stores W by default: 'float32' or 'float16'.")
       .def_property_readonly(
           "residual_precision",
@@ -199,9 +201,11 @@ memory; a view keeps it alive.)");
           "The compression parameters recorded in the container header, a dict.")
       .def(
           "relight",
-          [](CompressedObject& self, py::handle light, std::optional<int> residual,
-             std::optional<std::string> device, bool reference) {
-            const LightRgb rgb = rgb_rows_from(light, "light", self.field.lights);
+          [](CompressedObject& self, py::handle light, py::handle light_dir, py::handle color,
+             double spread, std::optional<int> residual, std::optional<std::string> device,
+             bool reference) {
+            const LightRgb rgb =
+                relight_light(light, light_dir, color, spread, self.field.directions);
             const int cap = residual_cap(residual);
             Image image;
             {
@@ -211,10 +215,13 @@ memory; a view keeps it alive.)");
             }
             return adopt_image(std::move(image));
           },
-          "light"_a, py::kw_only(), "residual"_a = py::none(), "device"_a = py::none(),
-          "reference"_a = false,
+          "light"_a = py::none(), py::kw_only(), "light_dir"_a = py::none(),
+          "color"_a = default_light_color(), "spread"_a = DirectionalLight{}.spread_degrees,
+          "residual"_a = py::none(), "device"_a = py::none(), "reference"_a = false,
           (std::string("Relight under a light vector (lights, 3): float32 (height, width, "
-                       "channels), owning its pixels.\n") +
+                       "channels), owning its pixels. Or, instead of light, under a light moved "
+                       "to light_dir=(x, y, z) with color= and spread=, as relume.light_vector "
+                       "makes it (and `relume relight --light-dir`).\n") +
            relight_options_doc)
               .c_str())
       .def(
@@ -272,14 +279,6 @@ most `residual` entries per function when given); functions not stored are zero.
 'float32' or 'float16' (None: as given to compress, or as the opened file had);
 light_index: 'auto', '8', '16' or '32' bits.)")
       .def(
-          "file_size",
-          [](const CompressedObject& self, std::optional<std::string> weights_precision,
-             std::optional<std::string> residual_precision, const std::string& light_index) {
-            const ContainerOptions options =
-                storage_with(self, weights_precision, residual_precision, light_index);
-            py::gil_scoped_release released;
-            return plan_container(self.field, options).file_bytes;
-      .def(
           "export_npz",
           [](const CompressedObject& self, const std::filesystem::path& path) {
             with_file_errors([&] {
@@ -292,6 +291,14 @@ light_index: 'auto', '8', '16' or '32' bits.)")
 (atomically; numpy.load reads it without pickle): W, F, the clusters, the residual as CSR,
 the dark model, the mask, lights and intensities, the basis transform and the quantization,
 with a 'description' entry that says how they rebuild the field and its images exactly.)")
+      .def(
+          "file_size",
+          [](const CompressedObject& self, std::optional<std::string> weights_precision,
+             std::optional<std::string> residual_precision, const std::string& light_index) {
+            const ContainerOptions options =
+                storage_with(self, weights_precision, residual_precision, light_index);
+            py::gil_scoped_release released;
+            return plan_container(self.field, options).file_bytes;
           },
           py::kw_only(), "weights_precision"_a = py::none(), "residual_precision"_a = py::none(),
           "light_index"_a = "auto",

@@ -1,12 +1,13 @@
 """relume.Compressed: its arrays are read-only views of its own memory and hold what a direct
 NumPy evaluation of R ~ W F + E needs; relighting (CPU reference and OpenCL, whole and batched,
-with a residual cap) equals `relume relight` and that evaluation; reconstruct equals
-`relume decompress`; export_npz writes what `relume export` does; save and open round-trip; and
-bad input raises relume errors."""
+with a residual cap, under a light moved by light_dir=) equals `relume relight` and that
+evaluation; reconstruct equals `relume decompress`; export_npz writes what `relume export` does;
+save and open round-trip; and bad input raises relume errors."""
 import json
 import os
 
 import numpy as np
+import OpenImageIO as oiio
 import pytest
 
 import relume
@@ -81,6 +82,25 @@ def test_opencl_relight_equals_the_command_and_the_reference(compressed, saved, 
                "-o", tmp_path / "cli.exr")
     np.testing.assert_array_equal(compressed.relight(light, residual=2),
                                   relume.read_image(tmp_path / "cli.exr"))
+
+
+def test_relight_under_a_moved_light_equals_the_command(compressed, saved, tmp_path):
+    moved = dict(light_dir=(0.4, 0.5, 0.75), color=(1, 0.8, 0.6), spread=4)
+    flags = ["--light-dir", "0.4,0.5,0.75", "--light-color", "1,0.8,0.6", "--spread", "4"]
+    light = relume.light_vector(compressed.directions, **moved)
+    for reference, device_flags in ((True, ["--cpu"]), (False, [])):
+        relit = compressed.relight(**moved, reference=reference)
+        np.testing.assert_array_equal(relit, compressed.relight(light, reference=reference))
+        output = tmp_path / f"cli-{reference}.exr"
+        run_relume("relight", saved, *flags, *device_flags, "-o", output)
+        np.testing.assert_allclose(relit, oiio.ImageBuf(str(output)).get_pixels(oiio.FLOAT),
+                                   rtol=1e-6, atol=1e-7)
+    with pytest.raises(relume.Error, match="one of the two"):
+        compressed.relight(light, light_dir=(0, 0, 1))
+    with pytest.raises(relume.Error, match="one of the two"):
+        compressed.relight()
+    with pytest.raises(relume.Error, match="give light_dir="):
+        compressed.relight(light, color=(2, 2, 2))
 
 
 def test_a_residual_cap_uses_the_largest_entries_only(compressed, light):
