@@ -13,6 +13,8 @@ PathLike = Union[str, os.PathLike]
 ArrayLike = npt.ArrayLike
 Float32Array = npt.NDArray[np.float32]
 Progress = Callable[[str, float], object]
+Direction = Union[Tuple[float, float, float], ArrayLike]
+Color = Union[Tuple[float, float, float], ArrayLike]
 
 class Error(ValueError):
     """A relume error: bad input (an option, an array, a value) or failed work."""
@@ -53,8 +55,17 @@ class Field:
         """(lights, 3)."""
     @property
     def image_names(self) -> list[str]: ...
-    def relight(self, light: ArrayLike, *, threads: int = 0) -> Float32Array:
-        """The uncompressed field relit: (height, width, channels)."""
+    def relight(
+        self,
+        light: Optional[ArrayLike] = None,
+        *,
+        light_dir: Optional[Direction] = None,
+        color: Color = (1.0, 1.0, 1.0),
+        spread: float = 0.0,
+        threads: int = 0,
+    ) -> Float32Array:
+        """The uncompressed field relit: (height, width, channels), under a light vector
+        (lights, 3) or a light moved to light_dir (see light_vector)."""
     def save(self, folder: PathLike) -> None: ...
 
 class CompressOptions:
@@ -149,6 +160,12 @@ class Compressed:
     @property
     def residual_values(self) -> Float32Array: ...
     @property
+    def dark_pixels(self) -> npt.NDArray[np.uint32]:
+        """(n,), pixels y * width + x relit by the dark model."""
+    @property
+    def dark(self) -> Float32Array:
+        """(channels, lights), the dark model; (0, lights) when no pixel is dark."""
+    @property
     def weights_precision(self) -> str: ...
     @property
     def residual_precision(self) -> str: ...
@@ -156,13 +173,17 @@ class Compressed:
     def parameters(self) -> dict: ...
     def relight(
         self,
-        light: ArrayLike,
+        light: Optional[ArrayLike] = None,
         *,
+        light_dir: Optional[Direction] = None,
+        color: Color = (1.0, 1.0, 1.0),
+        spread: float = 0.0,
         residual: Optional[int] = None,
         device: Optional[str] = None,
         reference: bool = False,
     ) -> Float32Array:
-        """Relit image (height, width, channels) under a light vector (lights, 3)."""
+        """Relit image (height, width, channels) under a light vector (lights, 3) or a light
+        moved to light_dir (see light_vector)."""
     def relight_batch(
         self,
         lights: ArrayLike,
@@ -181,6 +202,8 @@ class Compressed:
         residual_precision: Optional[str] = None,
         light_index: str = "auto",
     ) -> None: ...
+    def export_npz(self, path: PathLike) -> None:
+        """The arrays as a NumPy .npz, as `relume export --to npz` writes it."""
     def file_size(
         self,
         *,
@@ -313,13 +336,18 @@ def relative_error(
 ) -> float: ...
 def light_vector(
     dirs: ArrayLike,
-    env: Union[PathLike, ArrayLike],
+    env: Optional[Union[PathLike, ArrayLike]] = None,
     *,
+    light_dir: Optional[Union[Direction, Sequence[Direction]]] = None,
+    color: Color = (1.0, 1.0, 1.0),
+    spread: float = 0.0,
     rotate: Union[float, Sequence[float], ArrayLike] = 0.0,
     layout: str = "auto",
     threads: int = 0,
 ) -> Float32Array:
-    """(lights, 3) for one angle, (count, lights, 3) for a sequence of angles."""
+    """Of an environment map (env, with rotate and layout) or of a light moved to light_dir
+    (with color and spread): (lights, 3) for one angle or direction, (count, lights, 3) for a
+    sequence of angles or (count, 3) directions."""
 def sky(
     *,
     width: int = 512,

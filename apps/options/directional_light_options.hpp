@@ -13,10 +13,14 @@
 
 namespace relume {
 
+// The defaults are DirectionalLight's, which the Python module offers too.
 struct DirectionalLightOptions {
   std::vector<double> direction;  // empty: not given
-  std::vector<double> color{1, 1, 1};
-  double spread_degrees = 0;
+  std::vector<double> color = [] {
+    const Eigen::Vector3d rgb = DirectionalLight{}.rgb;
+    return std::vector<double>(rgb.data(), rgb.data() + 3);
+  }();
+  double spread_degrees = DirectionalLight{}.spread_degrees;
 };
 
 // Adds --light-dir; returns it so callers can make it exclusive with other light sources.

@@ -1,5 +1,6 @@
 // relume.Compressed (a compressed field: its parts as NumPy views, relighting on an OpenCL device
-// or with the CPU reference, reconstruction, saving), relume.open and relume.relative_error.
+// or with the CPU reference, reconstruction, saving, NumPy export), relume.open and
+// relume.relative_error.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -13,6 +14,9 @@
 #include "compressed_object.hpp"
 #include "container/container.hpp"
 #include "errors.hpp"
+#include "export/npz_export.hpp"
+#include "lighting/light_interpolation.hpp"
+#include "moved_light.hpp"
 
 namespace relume::python {
 
@@ -77,9 +81,10 @@ once and kept for later calls.)";
 void bind_compressed(py::module_& module) {
   py::class_<CompressedObject> compressed(module, "Compressed", R"(A compressed reflectance field:
     R[p, :] ~ weights[s, :] @ bases[cluster[s]] + residual row s
-for every stored function p = stored_function[s] (functions outside the mask or all zero are
-not stored and relight to 0). Made by relume.compress or relume.open. Its array attributes
-are read-only views of its own memory; a view keeps it alive.)");
+for every stored function p = stored_function[s]; the channels of each dark pixel are the rows
+of the dark model, and the other functions (outside the mask or all zero) relight to 0. Made
+by relume.compress or relume.open. Its array attributes are read-only views of its own
+memory; a view keeps it alive.)");
   compressed.def_property_readonly("width", [](const CompressedObject& c) { return c.field.width; })
       .def_property_readonly("height", [](const CompressedObject& c) { return c.field.height; })
       .def_property_readonly("channels", [](const CompressedObject& c) { return c.field.channels; })
@@ -165,6 +170,22 @@ are read-only views of its own memory; a view keeps it alive.)");
           },
           "float32 (nonzeros,): residual values, each row sorted by |value| descending.")
       .def_property_readonly(
+          "dark_pixels",
+          [](const py::object& self) {
+            const CompressedField& f = field_of(self);
+            return readonly_view(f.dark_pixels.data(), {py::ssize_t(f.dark_pixels.size())}, self);
+          },
+          "uint32 (n,): pixels y * width + x at the noise level, relit by the dark model.")
+      .def_property_readonly(
+          "dark",
+          [](const py::object& self) {
+            const CompressedField& f = field_of(self);
+            return readonly_view(f.dark.data(), {py::ssize_t(f.dark.size()) / f.lights, f.lights},
+                                 self);
+          },
+          "float32 (channels, lights), in the basis of bases: the dark model, (0, lights) when no "
+          "pixel is dark.")
+      .def_property_readonly(
           "weights_precision",
           [](const CompressedObject& c) { return to_string(c.storage.weights); },
           "How save() stores W by default: 'float32' or 'float16'.")
@@ -180,9 +201,11 @@ are read-only views of its own memory; a view keeps it alive.)");
           "The compression parameters recorded in the container header, a dict.")
       .def(
           "relight",
-          [](CompressedObject& self, py::handle light, std::optional<int> residual,
-             std::optional<std::string> device, bool reference) {
-            const LightRgb rgb = rgb_rows_from(light, "light", self.field.lights);
+          [](CompressedObject& self, py::handle light, py::handle light_dir, py::handle color,
+             double spread, std::optional<int> residual, std::optional<std::string> device,
+             bool reference) {
+            const LightRgb rgb =
+                relight_light(light, light_dir, color, spread, self.field.directions);
             const int cap = residual_cap(residual);
             Image image;
             {
@@ -192,10 +215,13 @@ are read-only views of its own memory; a view keeps it alive.)");
             }
             return adopt_image(std::move(image));
           },
-          "light"_a, py::kw_only(), "residual"_a = py::none(), "device"_a = py::none(),
-          "reference"_a = false,
+          "light"_a = py::none(), py::kw_only(), "light_dir"_a = py::none(),
+          "color"_a = default_light_color(), "spread"_a = DirectionalLight{}.spread_degrees,
+          "residual"_a = py::none(), "device"_a = py::none(), "reference"_a = false,
           (std::string("Relight under a light vector (lights, 3): float32 (height, width, "
-                       "channels), owning its pixels.\n") +
+                       "channels), owning its pixels. Or, instead of light, under a light moved "
+                       "to light_dir=(x, y, z) with color= and spread=, as relume.light_vector "
+                       "makes it (and `relume relight --light-dir`).\n") +
            relight_options_doc)
               .c_str())
       .def(
@@ -252,6 +278,19 @@ most `residual` entries per function when given); functions not stored are zero.
           R"(Write a .relume container (atomically: a failure leaves no file). Precisions:
 'float32' or 'float16' (None: as given to compress, or as the opened file had);
 light_index: 'auto', '8', '16' or '32' bits.)")
+      .def(
+          "export_npz",
+          [](const CompressedObject& self, const std::filesystem::path& path) {
+            with_file_errors([&] {
+              py::gil_scoped_release released;
+              write_compressed_field_npz(path, self.field);
+            });
+          },
+          "path"_a,
+          R"(Write the field's arrays as a NumPy .npz, as `relume export --to npz` does
+(atomically; numpy.load reads it without pickle): W, F, the clusters, the residual as CSR,
+the dark model, the mask, lights and intensities, the basis transform and the quantization,
+with a 'description' entry that says how they rebuild the field and its images exactly.)")
       .def(
           "file_size",
           [](const CompressedObject& self, std::optional<std::string> weights_precision,

@@ -12,6 +12,8 @@
 #include "bindings.hpp"
 #include "errors.hpp"
 #include "field/input_encoding.hpp"
+#include "lighting/light_interpolation.hpp"
+#include "moved_light.hpp"
 
 namespace relume::python {
 
@@ -78,8 +80,9 @@ intensities: (lights, 3), what the values were divided by (None: ones).)")
                     "The image file of each light (empty for a field made from arrays).")
       .def(
           "relight",
-          [](const ReflectanceField& f, py::handle light, unsigned threads) {
-            const LightRgb rgb = rgb_rows_from(light, "light", f.lights());
+          [](const ReflectanceField& f, py::handle light, py::handle light_dir, py::handle color,
+             double spread, unsigned threads) {
+            const LightRgb rgb = relight_light(light, light_dir, color, spread, f.directions);
             Image image;
             {
               py::gil_scoped_release released;
@@ -87,10 +90,14 @@ intensities: (lights, 3), what the values were divided by (None: ones).)")
             }
             return adopt_image(std::move(image));
           },
-          "light"_a, py::kw_only(), "threads"_a = 0,
+          "light"_a = py::none(), py::kw_only(), "light_dir"_a = py::none(),
+          "color"_a = default_light_color(), "spread"_a = DirectionalLight{}.spread_degrees,
+          "threads"_a = 0,
           R"(The field relit without compression (the reference): float32 (height, width,
 channels), out[p] = sum_i values[p, i] * light[i, c], accumulated in double. light:
-(lights, 3) RGB per light; a grey field uses each row's mean.)")
+(lights, 3) RGB per light; a grey field uses each row's mean. Or, instead of light, a light
+moved to light_dir=(x, y, z) with color= and spread=, as relume.light_vector makes it (and
+`relume relight --light-dir`). Pixels outside the mask are not set to 0 (the command does).)")
       .def(
           "save",
           [](const ReflectanceField& f, const std::filesystem::path& folder) {

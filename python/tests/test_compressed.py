@@ -1,11 +1,13 @@
 """relume.Compressed: its arrays are read-only views of its own memory and hold what a direct
 NumPy evaluation of R ~ W F + E needs; relighting (CPU reference and OpenCL, whole and batched,
-with a residual cap) equals `relume relight` and that evaluation; reconstruct equals
-`relume decompress`; save and open round-trip; and bad input raises relume errors."""
+with a residual cap, under a light moved by light_dir=) equals `relume relight` and that
+evaluation; reconstruct equals `relume decompress`; export_npz writes what `relume export` does;
+save and open round-trip; and bad input raises relume errors."""
 import json
 import os
 
 import numpy as np
+import OpenImageIO as oiio
 import pytest
 
 import relume
@@ -82,6 +84,25 @@ def test_opencl_relight_equals_the_command_and_the_reference(compressed, saved, 
                                   relume.read_image(tmp_path / "cli.exr"))
 
 
+def test_relight_under_a_moved_light_equals_the_command(compressed, saved, tmp_path):
+    moved = dict(light_dir=(0.4, 0.5, 0.75), color=(1, 0.8, 0.6), spread=4)
+    flags = ["--light-dir", "0.4,0.5,0.75", "--light-color", "1,0.8,0.6", "--spread", "4"]
+    light = relume.light_vector(compressed.directions, **moved)
+    for reference, device_flags in ((True, ["--cpu"]), (False, [])):
+        relit = compressed.relight(**moved, reference=reference)
+        np.testing.assert_array_equal(relit, compressed.relight(light, reference=reference))
+        output = tmp_path / f"cli-{reference}.exr"
+        run_relume("relight", saved, *flags, *device_flags, "-o", output)
+        np.testing.assert_allclose(relit, oiio.ImageBuf(str(output)).get_pixels(oiio.FLOAT),
+                                   rtol=1e-6, atol=1e-7)
+    with pytest.raises(relume.Error, match="one of the two"):
+        compressed.relight(light, light_dir=(0, 0, 1))
+    with pytest.raises(relume.Error, match="one of the two"):
+        compressed.relight()
+    with pytest.raises(relume.Error, match="give light_dir="):
+        compressed.relight(light, color=(2, 2, 2))
+
+
 def test_a_residual_cap_uses_the_largest_entries_only(compressed, light):
     for cap in (0, 1, 3):
         np.testing.assert_allclose(compressed.relight(light, residual=cap, reference=True),
@@ -119,6 +140,22 @@ def test_reconstruct_equals_the_command_decompress(compressed, saved, tmp_path):
     np.testing.assert_array_equal(ours.values, relume.load(tmp_path / "back").values)
     full = compressed.reconstruct()
     assert not np.array_equal(full.values, ours.values)
+
+
+def test_export_npz_writes_what_the_command_exports(compressed, saved, tmp_path):
+    run_relume("export", saved, "--to", "npz", tmp_path / "cli.npz")
+    opened = relume.open(saved)
+    opened.export_npz(tmp_path / "ours.npz")
+    assert (tmp_path / "ours.npz").read_bytes() == (tmp_path / "cli.npz").read_bytes()
+    archive = np.load(tmp_path / "ours.npz")
+    for ours, theirs in (("weights", "W"), ("bases", "F"), ("cluster", "cluster"),
+                         ("residual_offsets", "residual_indptr"), ("dark_pixels", "dark_pixels"),
+                         ("dark", "dark"), ("intensities", "intensities"), ("mask", "mask")):
+        np.testing.assert_array_equal(getattr(compressed, ours), archive[theirs], ours)
+    assert str(archive["transform"]) == "0" and compressed.transform == "identity"
+    assert float(archive["weight_step"]) > 0, "the default storage is quantized"
+    with pytest.raises(relume.FileError, match="no-folder"):
+        opened.export_npz(tmp_path / "no-folder" / "x.npz")
 
 
 def test_save_and_open_round_trip(compressed, saved, tmp_path):

@@ -1,8 +1,10 @@
 """relume.Field and relume.load: the arrays are read-only views of the field's memory holding
 the images as relume.read_image reads them; a Field made from arrays copies them once and
-round-trips through save and load; the uncompressed relighting equals `relume relight`; bad
-arrays and bad folders raise relume errors naming what is wrong."""
+round-trips through save and load; the uncompressed relighting (under a light vector or a moved
+light) equals `relume relight`; bad arrays and bad folders raise relume errors naming what is
+wrong."""
 import numpy as np
+import OpenImageIO as oiio
 import pytest
 
 import relume
@@ -52,6 +54,19 @@ def test_uncompressed_relight_equals_the_command(scene, field, sky_map, tmp_path
     np.testing.assert_array_equal(relit, relume.read_image(tmp_path / "cli.exr"))
     expected = np.einsum("ywci,ic->ywc", field.values.astype(np.float64), light)
     np.testing.assert_allclose(relit, expected, rtol=1e-5, atol=1e-7)
+
+
+def test_relight_under_a_moved_light_equals_the_command(scene, field, tmp_path):
+    run_relume("relight", scene, "--light-dir", "-0.3,0.6,0.7", "--spread", "8",
+               "-o", tmp_path / "cli.exr")
+    relit = field.relight(light_dir=(-0.3, 0.6, 0.7), spread=8) * field.mask[..., None]
+    np.testing.assert_allclose(relit, oiio.ImageBuf(str(tmp_path / "cli.exr")).get_pixels(
+        oiio.FLOAT), rtol=1e-6, atol=1e-7)
+    light = relume.light_vector(field.directions, light_dir=(-0.3, 0.6, 0.7), spread=8)
+    np.testing.assert_array_equal(field.relight(light_dir=(-0.3, 0.6, 0.7), spread=8),
+                                  field.relight(light))
+    with pytest.raises(relume.Error, match="one of the two"):
+        field.relight(light, light_dir=(0, 0, 1))
 
 
 def test_bad_arrays_are_refused_naming_the_fault(field):

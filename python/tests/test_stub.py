@@ -1,8 +1,10 @@
 """python/relume.pyi against the module: the compress options the stub lists (class
 CompressOptions and the keywords of compress and compress_file) are exactly relume.CompressOptions'
-attributes, with the same defaults, which are the C++ library's (relume/compress.hpp). A default
-changed in C++ and not in the stub fails here."""
+attributes, with the same defaults, which are the C++ library's (relume/compress.hpp); the moved
+light's color= and spread= have the module's defaults (DirectionalLight's) wherever they are
+taken. A default changed in C++ and not in the stub fails here."""
 import ast
+import re
 
 import pytest
 
@@ -26,8 +28,14 @@ def stub_class_defaults(tree, name):
 
 
 def stub_keyword_defaults(tree, name):
-    for node in tree.body:
-        if isinstance(node, ast.FunctionDef) and node.name == name:
+    """The keyword-only defaults of function `name` ("Class.method" for a method)."""
+    *owner, function = name.split(".")
+    body = tree.body
+    if owner:
+        body = next((node.body for node in body
+                     if isinstance(node, ast.ClassDef) and node.name == owner[0]), [])
+    for node in body:
+        if isinstance(node, ast.FunctionDef) and node.name == function:
             arguments = node.args
             return {argument.arg: ast.literal_eval(default)
                     for argument, default in zip(arguments.kwonlyargs, arguments.kw_defaults)
@@ -71,3 +79,17 @@ def test_options_take_keywords_and_refuse_unknown_ones():
     assert (options.clusters, options.residual, options.memory_limit) == (8, 3, 1 << 30)
     with pytest.raises(relume.Error, match="unknown compress option 'cluster'"):
         relume.CompressOptions(cluster=8)
+
+
+@pytest.mark.parametrize("where", ["light_vector", "Field.relight", "Compressed.relight"])
+def test_the_stub_gives_the_moved_light_the_module_defaults(where):
+    function = relume
+    for part in where.split("."):
+        function = getattr(function, part)
+    # pybind11's signature line: name(argument: type = repr(default), ...) -> type
+    signature = function.__doc__.splitlines()[0]
+    module = {name: ast.literal_eval(
+                  re.search(rf"\b{name}: \w+ = (\([^)]*\)|[-+0-9.e]+)", signature).group(1))
+              for name in ("color", "spread")}
+    stub = stub_keyword_defaults(stub_tree(), where)
+    assert {name: stub[name] for name in module} == module, signature

@@ -35,7 +35,8 @@ const CommandRegistration registration{
       auto* command = app.add_subcommand(
           "export",
           "Export a .relume container's arrays for other tools: --to npz writes a NumPy .npz\n"
-          "(clusters, W, F, the residual as CSR, lights, mask; see the archive's 'description')\n"
+          "(clusters, W, F, the residual as CSR, the dark model, lights, intensities, mask,\n"
+          "transform, quantization; the archive's 'description' says how they rebuild the field)\n"
           "Example: relume export scene.relume --to npz scene.npz, then in Python\n"
           "         d = numpy.load('scene.npz'); d['W'][0] @ d['F'][d['cluster'][0]]");
       command->add_option("input", options->input, "The .relume container")->required();
