@@ -2,7 +2,6 @@
 #include "options/field_input_options.hpp"
 
 #include "core/console.hpp"
-#include "core/progress.hpp"
 #include "field/field_source.hpp"
 #include "field/input_encoding.hpp"
 
@@ -51,15 +50,6 @@ FieldLoadOptions input_load_options(const std::string& input, const FieldInputOp
   load.mask_file = options.mask_file;
   load.use_mask = !options.no_mask;
   return load;
-}
-
-ReflectanceField load_input_field(const std::string& input, FieldLoadOptions load) {
-  const std::size_t images = describe_field(input).images.size();
-  ProgressReporter progress("loading " + std::to_string(images) + " images", images);
-  load.image_loaded = [&progress] { progress.advance(); };
-  ReflectanceField field = load_field(input, load);
-  progress.finish();
-  return field;
 }
 
 }  // namespace relume

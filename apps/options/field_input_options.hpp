@@ -24,11 +24,9 @@ void add_field_input_options(CLI::App& command, FieldInputOptions& options);
 std::string requested_encoding(const FieldInputOptions& options);
 
 // How `input` is read as the options say, with `threads` workers: decides the input encoding
-// (once) and notes the decision with its reason. No progress callback.
+// (once) and notes the decision with its reason. No progress callback
+// (field/load_with_progress.hpp loads with one).
 FieldLoadOptions input_load_options(const std::string& input, const FieldInputOptions& options,
                                     unsigned threads);
-
-// Loads `input` as `load` says (input_load_options), with a progress bar while the images load.
-ReflectanceField load_input_field(const std::string& input, FieldLoadOptions load);
 
 }  // namespace relume

@@ -24,9 +24,9 @@
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/ranks.hpp"
-#include "field/field_source.hpp"
 #include "field/field_strips.hpp"
 #include "field/input_encoding.hpp"
+#include "field/load_with_progress.hpp"
 #include "field/mask_file.hpp"
 
 namespace relume {
@@ -173,12 +173,7 @@ class CompressionRunner {
           asked_.refine >= 0 ? asked_.refine : settings_.compression.clustering.max_iterations;
     } else {
       reader_.reset();  // the images are read whole instead
-      const std::size_t images = describe_field(input_).images.size();
-      ProgressReporter progress("loading " + std::to_string(images) + " images", images);
-      FieldLoadOptions counted = load;
-      counted.image_loaded = [&progress] { progress.advance(); };
-      loaded_ = load_field(input_, counted);
-      progress.finish();
+      loaded_ = load_field_with_progress(input_, load);
       field_ = &*loaded_;
     }
     const ReflectanceField& shape = field_ ? *field_ : reader_->header();

@@ -14,6 +14,7 @@
 #include "container/container.hpp"
 #include "core/atomic_file.hpp"
 #include "core/console.hpp"
+#include "field/load_with_progress.hpp"
 #include "field/mask_file.hpp"
 #include "options/field_input_options.hpp"
 #include "options/image_output_options.hpp"
@@ -77,7 +78,7 @@ void run_relight(const RelightOptions& options) {
     relight_container(options);
     return;
   }
-  const ReflectanceField field = load_input_field(
+  const ReflectanceField field = load_field_with_progress(
       options.input, input_load_options(options.input, options.field_input, options.threads));
   const LightRgb lights = resolve_light_vector(options.light_source, field.directions);
   Image image = relight_field(field, lights, options.threads);
