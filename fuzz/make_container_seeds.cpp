@@ -1,6 +1,8 @@
 // Writes the binary seed inputs of the fuzz targets into fuzz/corpus/ (the text seeds are
 // written by hand): small containers in every storage form the reader knows (raw and zstd-coded
-// sections, float32, float16 and quantized values, 8-bit bases), and .npy matrices.
+// sections, float32, float16 and quantized values, 8-bit bases, dark pixels with gains), and
+// .npy matrices. The version-3 seeds (v3_*.relume) were written by relume before version 4 and
+// are kept by hand.
 // Run by `scripts/fuzz.sh --make-seeds`; the seeds it wrote are committed.
 #include <cmath>
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include "container/container.hpp"
 #include "core/atomic_file.hpp"
 #include "field/npy.hpp"
+#include "model/dark_gains.hpp"
 #include "model/random_compressed_field.hpp"
 
 int main(int argc, char** argv) {
@@ -61,6 +64,19 @@ int main(int argc, char** argv) {
         containers / (entropy ? "zstd_quantized.relume" : "raw_quantized.relume"), quantized,
         options);
   }
+  // Dark pixels with their block gains (version 4): the pixels inside the mask without stored
+  // functions.
+  relume::CompressedField dark = field;
+  std::vector<std::uint8_t> stored(dark.mask.size(), 0);
+  for (const std::uint32_t p : dark.stored_function) stored[p / std::uint32_t(dark.channels)] = 1;
+  for (std::size_t q = 0; q < dark.mask.size(); ++q)
+    if (dark.mask[q] && !stored[q]) dark.dark_pixels.push_back(std::uint32_t(q));
+  dark.dark.assign(std::size_t(dark.channels) * dark.lights, 0.002f);
+  dark.dark_gain_step = 0.25f;
+  relume::DarkGainGrid grid = relume::empty_dark_gain_grid(dark.width, dark.height, dark.channels);
+  for (std::size_t v = 0; v < grid.values.size(); ++v) grid.values[v] = std::int32_t(2 + v);
+  relume::expand_dark_gains(dark, grid);
+  relume::write_container(containers / "zstd_dark_gains.relume", dark);
   const fs::path npy = corpus / "npy";
   fs::create_directories(npy);
   Eigen::MatrixXd matrix(3, 4);

@@ -8,9 +8,10 @@
 //   relight_rows: out[b][p] = W[s] . v[k][.][c][b]
 //                             + sum_{e < min(width, cap)} E[s][e] * I[i_e][c][b]
 //   residual_rows: the residual term alone (the residual SpMV).
-//   dark_pixels: out[b][q * CHANNELS + c] = dark[c][b] for the pixels of the dark model, whose
-//     per-channel values the host computes per frame (dark[c] . I); one work-item per run of
-//     consecutive dark pixels (runs[2r] first pixel, runs[2r + 1] pixels).
+//   dark_pixels: out[b][q * CHANNELS + c] = gain[d][c] * dark[c][b] for the pixels of the dark
+//     model (d: the pixel's index among them), whose per-channel values the host computes per
+//     frame (dark[c] . I); one work-item per run of consecutive dark pixels (runs[3r] first pixel,
+//     runs[3r + 1] pixels, runs[3r + 2] the first one's index d).
 //     One work-item per stored row s (function p, channel c = p % CHANNELS, cluster k). Rows are
 //     grouped in slices of SLICE_ROWS; inside a slice, W is stored slot-major (all rows' term j,
 //     then term j+1), so consecutive work-items read consecutive addresses. The residual
@@ -357,14 +358,16 @@ __kernel void residual_rows(const uint rows, const uint frame_stride, const uint
 #endif
 
 __kernel void dark_pixels(const uint runs_count, const uint frame_stride, __global const uint* runs,
-                          __global const float* dark, __global float* output) {
+                          __global const float* dark, __global const float* gains,
+                          __global float* output) {
   const uint run = get_global_id(0);
   if (run >= runs_count) return;
-  const uint first = runs[2 * run], pixels = runs[2 * run + 1];
+  const uint first = runs[3 * run], pixels = runs[3 * run + 1];
+  __global const float* gain = gains + runs[3 * run + 2] * CHANNELS;
   for (int b = 0; b < BATCH; ++b)
     for (int c = 0; c < CHANNELS; ++c) {
       const float value = dark[c * BATCH_PAD + b];
       __global float* out = output + b * frame_stride + first * CHANNELS + c;
-      for (uint q = 0; q < pixels; ++q) out[q * CHANNELS] = value;
+      for (uint q = 0; q < pixels; ++q) out[q * CHANNELS] = gain[q * CHANNELS + c] * value;
     }
 }

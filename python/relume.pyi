@@ -166,6 +166,9 @@ class Compressed:
     def dark(self) -> Float32Array:
         """(channels, lights), the dark model; (0, lights) when no pixel is dark."""
     @property
+    def dark_gains(self) -> Float32Array:
+        """(n, channels): channel c of dark pixel d is dark_gains[d, c] * dark[c]."""
+    @property
     def weights_precision(self) -> str: ...
     @property
     def residual_precision(self) -> str: ...

@@ -42,9 +42,11 @@ struct CompressOptions {
   // "per-function" (the same count in every function) or "peak" (count x functions over the
   // field, the entries largest relative to their function's peak).
   std::string residual_allocation = "per-function";
-  // Field units; negative: the field's own noise floor (ReflectanceField::noise_floor). Pixels
-  // whose every channel has an RMS at or below noise_floor share one dark model; residual entries
-  // with |value| at or below threshold are dropped.
+  // Field units. A pixel whose every channel is, within noise_floor (RMS over the lights), a
+  // multiple of the dark shape has no stored rows (the dark model); 0: every pixel is stored.
+  // Negative: 3 x the noise deviation estimated from the field (compress/noise_model.hpp).
+  // Residual entries with |value| at or below threshold are dropped; negative: the estimated
+  // deviation, or noise_floor when one is given.
   float noise_floor = -1.0f;
   float threshold = -1.0f;
   // "irls": the IRLS fits only; "lp-dual", "lp" or "huber": refit every cluster's F and W

@@ -3,8 +3,8 @@
 //   R[p,:] ~ W[p,:] * F^{c(p)} + E[p,:]
 // Only the functions that a scene needs are stored ("stored rows"): functions outside the mask and
 // all-zero functions have no row and relight to zero, and pixels at the noise level ("dark
-// pixels") share one dark model per channel. This is what the container file holds and what the
-// relighting kernels read.
+// pixels") are multiples of one dark model per channel. This is what the container file holds
+// and what the relighting kernels read.
 //
 // reconstruct_field expands it back into a ReflectanceField; relative_error is the paper's error
 // measure (Eq. 16) between an original field and its compressed form.
@@ -69,10 +69,17 @@ struct CompressedField {
   std::vector<float> bases;  // clusters * terms * lights: F^k[j][i] at (k * terms + j) * lights + i
   ResidualRows residual;     // stored rows, in the transformed basis
   ValueQuantization quantization;
-  // The dark model: pixels whose functions are all at the noise level have no stored rows and
-  // relight as one shared function per channel, dark[c * lights + i] (in the transformed basis).
+  // The dark model: pixels whose functions are, within the noise, multiples of one shared
+  // function per channel, dark[c * lights + i] (in the transformed basis), have no stored rows:
+  // dark pixel d relights in channel c as dark_gains[d * channels + c] x that function. The
+  // container stores the gains once per dark_gain_block x dark_gain_block block of pixels,
+  // quantized with step dark_gain_step, so every dark pixel of a block has the same gain.
+  // Empty gains: every gain is 1 (containers before version 4, where dark was the dark pixels'
+  // mean).
   std::vector<std::uint32_t> dark_pixels;  // ascending pixel indices, inside the mask
   std::vector<float> dark;                 // channels x lights, empty when no pixel is dark
+  std::vector<float> dark_gains;           // dark pixels x channels, or empty
+  float dark_gain_step = 0;                // > 0 when there are gains
   // The field it was compressed from had no negative value (every capture does): a relit image
   // under a non-negative light vector is then non-negative too, and Relighter projects the
   // compressed field's undershoot below zero back to 0 (RelighterOptions::allow_negative).
@@ -88,6 +95,16 @@ struct CompressedField {
 // Every function that takes a cap (reconstruction, the error measures, relighting) accepts
 // all_residual_entries for "every entry" and refuses a negative cap.
 inline constexpr int all_residual_entries = std::numeric_limits<int>::max();
+
+// The side of the square pixel blocks that share one dark gain per channel in the container.
+inline constexpr int dark_gain_block = 8;
+
+// The gain of dark pixel number `d` (its index in dark_pixels) in channel c: 1 without gains.
+inline float dark_gain(const CompressedField& field, std::size_t d, int c) {
+  return field.dark_gains.empty()
+             ? 1.0f
+             : field.dark_gains[d * std::size_t(field.channels) + std::size_t(c)];
+}
 
 // The whole field in the original (light) basis: stored rows reconstructed, dark pixels as the
 // dark model and, for a Haar-stored field, transformed back; other functions are zero. Mask,

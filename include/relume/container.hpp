@@ -21,7 +21,7 @@ namespace relume {
 // and 2 (every cluster stores a weight for each of its terms). From version 3 a stored row has
 // no weight for a term whose basis row is all zero: the clusters that need fewer terms than the
 // field's `terms` (model/cluster_terms.hpp) store only the weights they use.
-inline constexpr std::uint32_t container_format_version = 3;
+inline constexpr std::uint32_t container_format_version = 4;
 
 // How W or the residual values are stored: float32, IEEE half, or integers times the field's
 // quantization step (ValuePrecision::quantized: always so for a quantized field, see

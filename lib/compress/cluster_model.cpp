@@ -4,6 +4,7 @@
 #include <cmath>
 #include <relume/error.hpp>
 
+#include "compress/dark_pixels.hpp"
 #include "core/parallel.hpp"
 #include "model/haar_transform.hpp"
 
@@ -16,48 +17,49 @@ std::vector<std::vector<std::uint32_t>> ClusterModel::members() const {
   return lists;
 }
 
-PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, float noise_floor,
-                          unsigned threads, const std::vector<float>& light_scale) {
+void check_finite_values(const ReflectanceField& field) {
+  if (!field.mask.empty() && std::int64_t(field.mask.size()) != field.pixels())
+    throw Error("field mask has " + std::to_string(field.mask.size()) + " pixels, expected " +
+                std::to_string(field.pixels()));
+  if (field.values.allFinite()) return;
+  for (std::int64_t p = 0; p < field.functions(); ++p) {
+    const std::int64_t q = p / field.channels;
+    if (!field.mask.empty() && field.mask[std::size_t(q)] == 0) continue;
+    for (int i = 0; i < field.lights(); ++i)
+      if (!std::isfinite(field.values(p, i)))
+        throw Error("reflectance function " + std::to_string(p) + " (pixel " + std::to_string(q) +
+                    ", channel " + std::to_string(p % field.channels) +
+                    ") has a non-finite value " + std::to_string(field.values(p, i)) +
+                    " at light " + std::to_string(i));
+  }
+}
+
+PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform,
+                          const NoiseModel& noise, unsigned threads,
+                          const std::vector<float>& light_scale) {
   const int lights = field.lights();
   if (!light_scale.empty() && (haar_transform || int(light_scale.size()) != lights))
     throw Error("a light scale needs one value per light (" + std::to_string(lights) +
                 ") and no basis transform");
   const bool masked = !field.mask.empty();
-  if (masked && std::int64_t(field.mask.size()) != field.pixels())
-    throw Error("field mask has " + std::to_string(field.mask.size()) + " pixels, expected " +
-                std::to_string(field.pixels()));
+  check_finite_values(field);
   PreparedRows prepared;
-  const double floor_energy = double(noise_floor) * noise_floor * lights;
-  std::vector<double> dark_sum(std::size_t(field.channels) * lights, 0.0);
+  DarkPixels dark = select_dark_pixels(field, noise, threads);
+  std::vector<std::uint8_t> is_dark(std::size_t(field.pixels()), 0);
+  for (const std::uint32_t q : dark.pixels) is_dark[q] = 1;
   for (std::int64_t q = 0; q < field.pixels(); ++q) {
-    if (masked && field.mask[std::size_t(q)] == 0) continue;
-    bool dark = noise_floor > 0;
-    const std::size_t first = prepared.functions.size();
+    if ((masked && field.mask[std::size_t(q)] == 0) || is_dark[std::size_t(q)]) continue;
     for (int c = 0; c < field.channels; ++c) {
       const std::int64_t p = q * field.channels + c;
-      const auto row = field.values.row(p);
-      double energy = 0;
-      for (int i = 0; i < lights; ++i) {
-        if (!std::isfinite(row[i]))
-          throw Error("reflectance function " + std::to_string(p) + " (pixel " + std::to_string(q) +
-                      ", channel " + std::to_string(c) + ") has a non-finite value " +
-                      std::to_string(row[i]) + " at light " + std::to_string(i));
-        energy += double(row[i]) * row[i];
-      }
-      dark = dark && energy <= floor_energy;
-      if (energy > 0) prepared.functions.push_back(static_cast<std::uint32_t>(p));
+      if (field.values.row(p).squaredNorm() > 0)
+        prepared.functions.push_back(static_cast<std::uint32_t>(p));
     }
-    if (!dark) continue;
-    prepared.functions.resize(first);  // the pixel's functions go to the dark model instead
-    prepared.dark_pixels.push_back(static_cast<std::uint32_t>(q));
-    for (int c = 0; c < field.channels; ++c)
-      for (int i = 0; i < lights; ++i)
-        dark_sum[std::size_t(c) * lights + i] += field.values(q * field.channels + c, i);
   }
-  if (!prepared.dark_pixels.empty()) {
-    prepared.dark.resize(dark_sum.size());
-    for (std::size_t v = 0; v < dark_sum.size(); ++v)
-      prepared.dark[v] = float(dark_sum[v] / double(prepared.dark_pixels.size()));
+  if (!dark.pixels.empty()) {
+    prepared.dark_pixels = std::move(dark.pixels);
+    prepared.dark_gains = std::move(dark.gains);
+    prepared.dark_gain_step = dark.gain_step;
+    prepared.dark = noise.shape;
     if (haar_transform)
       for (int c = 0; c < field.channels; ++c)
         haar_forward(prepared.dark.data() + std::size_t(c) * lights, lights, 1);

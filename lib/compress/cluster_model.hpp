@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "compress/noise_model.hpp"
+
 namespace relume {
 
 struct WorkingRows {
@@ -44,18 +46,26 @@ struct PreparedRows {
   // Light weighting (compress/light_weighting.hpp): the rows are R[p,i] / light_scale[i] before
   // they are scaled to unit norm; empty: R itself.
   std::vector<float> light_scale;
-  // Pixels inside the mask whose every channel has an RMS over the lights at or below the noise
-  // floor: they get no rows, and relight as `dark` (channels x lights, their mean per channel, in
-  // the rows' basis).
+  // Pixels inside the mask whose every channel is, within the noise model's threshold, a
+  // multiple of the dark shape (noise_model.hpp), with the multiple its block's (dark_gains.hpp):
+  // they get no rows and relight as gain x `dark` (channels x lights, the dark shape in the rows'
+  // basis). dark_gains: dark pixels x channels, multiples of dark_gain_step.
   std::vector<std::uint32_t> dark_pixels;
   std::vector<float> dark;
+  std::vector<float> dark_gains;
+  float dark_gain_step = 0;
 };
 
-// The functions a compression stores: inside the mask, not all zero, not of a dark pixel (with
-// noise_floor > 0, measured on R itself), divided by `light_scale` per light when it is not
-// empty, scaled to unit norm, in the Haar basis if asked (not together with a light scale).
-// Throws Error naming the function and light of a NaN or Inf value.
-PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform, float noise_floor,
-                          unsigned threads, const std::vector<float>& light_scale = {});
+// Throws Error for a mask of the wrong size, and naming the first function (pixel, channel) and
+// light inside the mask that holds NaN or Inf; values outside the mask are never read.
+void check_finite_values(const ReflectanceField& field);
+
+// The functions a compression stores: inside the mask, not all zero, not of a dark pixel (by
+// `noise`, measured on R itself), divided by `light_scale` per light when it is not empty, scaled
+// to unit norm, in the Haar basis if asked (not together with a light scale). Throws Error
+// naming the function and light of a NaN or Inf value.
+PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform,
+                          const NoiseModel& noise, unsigned threads,
+                          const std::vector<float>& light_scale = {});
 
 }  // namespace relume

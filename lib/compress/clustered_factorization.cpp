@@ -46,7 +46,7 @@ void validate_compression_options(const CompressionOptions& options) {
     throw Error("residual threshold must be a finite value (negative: the noise floor), got " +
                 std::to_string(options.residual_threshold));
   if (std::isnan(options.noise_floor) || !std::isfinite(options.noise_floor))
-    throw Error("noise floor must be a finite value (negative: the field's), got " +
+    throw Error("noise floor must be a finite value (negative: estimated from the field), got " +
                 std::to_string(options.noise_floor));
   if (!(options.light_weighting >= 0 && options.light_weighting <= 1))
     throw Error("the light weighting must be an exponent in [0, 1], got " +
@@ -134,6 +134,8 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   out.stored_function = prepared.functions;
   out.dark_pixels = prepared.dark_pixels;
   out.dark = prepared.dark;
+  out.dark_gains = prepared.dark_gains;
+  out.dark_gain_step = prepared.dark_gain_step;
   out.non_negative = (field.values.array() >= 0.0f).all();
   out.cluster.assign(model.assignment.begin(), model.assignment.end());
   // The model fits the weighted rows R / S: F S is the basis of R (light_weighting.hpp).
@@ -253,11 +255,13 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   const ClusteringOptions& clustering = options.clustering;
   const bool haar = options.transform == BasisTransform::haar;
   auto start = Clock::now();
-  stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : field.noise_floor;
-  stats.residual_threshold =
-      options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
+  stats.noise = options.noise_floor >= 0 ? noise_floor_model(field, options.noise_floor)
+                                         : estimate_noise(field, clustering.threads);
+  stats.residual_threshold = options.residual_threshold >= 0
+                                 ? options.residual_threshold
+                                 : default_residual_threshold(stats.noise, field);
   const PreparedRows prepared = prepare_rows(
-      field, haar, stats.noise_floor, clustering.threads,
+      field, haar, stats.noise, clustering.threads,
       options.light_weighting > 0 ? light_weighting_scales(field, options.light_weighting)
                                   : std::vector<float>{});
   stats.functions = field.functions();
@@ -275,8 +279,8 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   ClusterModel model;
   if (options.multires_levels > 0 && !prepared.functions.empty() && !resume) {
     stats.multires.emplace();
-    model = multires_start(field, prepared, options.multires_levels, haar, stats.noise_floor,
-                           clustering, *stats.multires);
+    model = multires_start(field, prepared, options.multires_levels, haar, stats.noise, clustering,
+                           *stats.multires);
     iterate_clusters(prepared.rows, model, clustering, options.refine_iterations, stats.clustering,
                      hook);
   } else {

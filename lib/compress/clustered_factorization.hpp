@@ -42,9 +42,10 @@ struct CompressionOptions {
   bool refit_chooses_clusters = false;
   ResidualBudget residual;  // entries kept per function (on average with allocation `peak`)
   ResidualAllocation residual_allocation = ResidualAllocation::per_function;
-  // Field units. The noise floor: pixels whose every channel has an RMS at or below it go to the
-  // dark model (PreparedRows). The threshold: residual entries with |value| at or below it are
-  // dropped. Negative: the field's own noise floor (ReflectanceField::noise_floor) for both.
+  // Field units. The noise floor: pixels whose every channel is a multiple of the dark shape
+  // within it (RMS over the lights) go to the dark model (PreparedRows, noise_model.hpp).
+  // Negative: estimated from the field (estimate_noise). The threshold: residual entries with
+  // |value| at or below it are dropped; negative: default_residual_threshold.
   float noise_floor = -1.0f;
   float residual_threshold = -1.0f;
   BasisTransform transform = BasisTransform::identity;
@@ -75,8 +76,9 @@ struct CompressionStats {
   std::int64_t outside_mask = 0;
   std::int64_t all_zero = 0;
   std::size_t stored_rows = 0;
-  std::size_t dark_pixels = 0;                    // pixels relit by the dark model
-  float noise_floor = 0, residual_threshold = 0;  // as used
+  std::size_t dark_pixels = 0;   // pixels relit by the dark model
+  NoiseModel noise;              // as used
+  float residual_threshold = 0;  // as used
   int clusters_asked = 0;
   int clusters = 0;
   int residual_entries = 0;  // per function, from the budget

@@ -49,6 +49,8 @@ void CompressedStripFile::append(const CompressedField& strip) {
   rowless.mask = strip.mask;
   rowless.dark_pixels = strip.dark_pixels;
   if (!strip.dark_pixels.empty()) rowless.dark = strip.dark;
+  rowless.dark_gains = strip.dark_gains;
+  rowless.dark_gain_step = strip.dark_gain_step;
   rowless.non_negative = strip.non_negative;
   if (shell_.height == 0) {
     rowless.directions = strip.directions;

@@ -80,6 +80,18 @@ std::uint64_t peak_memory_bytes() {
   return std::uint64_t(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
+namespace {
+
+// The noise model the run used (noise_model.hpp).
+nlohmann::ordered_json noise_json(const NoiseModel& noise) {
+  return {{"estimated", noise.estimated},
+          {"sigma", noise.sigma},
+          {"dark_threshold", noise.threshold},
+          {"dark_threshold_sigmas", noise.estimated ? dark_threshold_sigmas : 0.0f}};
+}
+
+}  // namespace
+
 nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
                                               const CompressionStats& stats,
                                               const std::string& solver) {
@@ -92,7 +104,7 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
           {"residual_entries", stats.residual_entries},
           {"residual_allocation", to_string(options.residual_allocation)},
           {"residual_threshold", stats.residual_threshold},
-          {"noise_floor", stats.noise_floor},
+          {"noise", noise_json(stats.noise)},
           {"transform", options.transform == BasisTransform::haar ? "haar" : "identity"},
           {"light_weighting", options.light_weighting},
           {"solver", solver},

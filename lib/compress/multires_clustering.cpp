@@ -47,13 +47,13 @@ CandidateLists neighbourhood_pools(const ReflectanceField& field, const Prepared
 }  // namespace
 
 ClusterModel multires_start(const ReflectanceField& field, const PreparedRows& full, int levels,
-                            bool haar_transform, float noise_floor,
+                            bool haar_transform, const NoiseModel& noise,
                             const ClusteringOptions& options, MultiresTrace& trace) {
   trace.levels = levels;
   auto start = Clock::now();
   const ReflectanceField low = downsample_field(field, levels);
   const PreparedRows low_rows =
-      prepare_rows(low, haar_transform, noise_floor, options.threads, full.light_scale);
+      prepare_rows(low, haar_transform, noise, options.threads, full.light_scale);
   trace.downsample_seconds = seconds_since(start);
   trace.low_width = low.width;
   trace.low_height = low.height;

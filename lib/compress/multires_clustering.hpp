@@ -23,10 +23,10 @@ struct MultiresTrace {
 };
 
 // The full-resolution model (bases, assignment, weights) for `full`, the prepared rows of
-// `field`. `haar_transform` and `noise_floor` must match how `full` was prepared; the low
+// `field`. `haar_transform` and `noise` must match how `full` was prepared; the low
 // resolution is weighted by `full`'s light scale.
 ClusterModel multires_start(const ReflectanceField& field, const PreparedRows& full, int levels,
-                            bool haar_transform, float noise_floor,
+                            bool haar_transform, const NoiseModel& noise,
                             const ClusteringOptions& options, MultiresTrace& trace);
 
 }  // namespace relume

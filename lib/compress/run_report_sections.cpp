@@ -92,18 +92,29 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
                   "functions not stored)",
                   report["error_masked"].get<double>(), report["error_all"].get<double>(),
                   static_cast<long long>(outside));
+  const nlohmann::ordered_json& noise = report["parameters"]["noise"];
+  std::string thresholds;
+  for (const auto& t : noise["dark_threshold"]) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%s%.3g", thresholds.empty() ? "" : "/", t.get<double>());
+    thresholds += value;
+  }
+  char dark[200];
+  std::snprintf(dark, sizeof dark, ", %lld dark pixels (noise floor %s, %s)",
+                static_cast<long long>(report["field"]["dark_pixels"].get<std::int64_t>()),
+                thresholds.c_str(), noise["estimated"].get<bool>() ? "estimated" : "given");
   const nlohmann::ordered_json& per_light = report["per_light_error_masked"];
   const std::string output = report["output"].get<std::string>();
   char line[1024];
   std::snprintf(line, sizeof line,
                 "compressed %s -> %s: %llu bytes (%.4f of float32), %s, largest per-light error "
-                "%.3g of its function's peak, %lld negative values, %d clusters, %.1f s",
+                "%.3g of its function's peak, %lld negative values, %d clusters%s, %.1f s",
                 report["input"].get<std::string>().c_str(),
                 output.empty() ? "memory" : output.c_str(),
                 static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
                 report["ratio"].get<double>(), error, per_light["largest_relative"].get<double>(),
                 static_cast<long long>(per_light["negative_values"].get<std::int64_t>()), clusters,
-                report["seconds"].get<double>());
+                dark, report["seconds"].get<double>());
   return line;
 }
 

@@ -19,6 +19,7 @@
 #include "core/progress.hpp"
 #include "core/ranks.hpp"
 #include "model/compressed_field_rows.hpp"
+#include "model/haar_transform.hpp"
 #include "model/reconstruct_field.hpp"
 
 namespace relume {
@@ -45,18 +46,16 @@ struct ReadResult {
   std::vector<std::uint64_t> stored_per_row;  // stored functions of every pixel row read
   std::size_t dark_pixels = 0;
   std::int64_t outside_mask = 0;  // functions
-  std::vector<double> dark_sum;   // channels x lights, in the rows' basis
 };
 
 // Pixel rows [begin_row, end_row): this rank's share of the field.
 ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& options,
-                       const CompressionPlan& plan, float noise_floor, int begin_row, int end_row,
-                       ScratchRows& scratch) {
+                       const CompressionPlan& plan, const NoiseModel& noise, int begin_row,
+                       int end_row, ScratchRows& scratch) {
   const ReflectanceField& header = reader.header();
   const std::size_t row_functions = std::size_t(header.width) * std::size_t(header.channels);
   ReadResult result;
   result.stored_per_row.assign(std::size_t(end_row - begin_row), 0);
-  result.dark_sum.assign(std::size_t(header.channels) * header.lights(), 0.0);
   ProgressReporter progress("compress: reading strips", std::uint64_t(end_row - begin_row),
                             options.clustering.quiet);
   reader.rewind();
@@ -65,12 +64,10 @@ ReadResult read_strips(FieldStripReader& reader, const CompressionOptions& optio
     const int rows = std::min(plan.strip_rows, end_row - y);
     const ReflectanceField strip = reader.read(y, rows);
     const PreparedRows prepared = prepare_rows(strip, options.transform == BasisTransform::haar,
-                                               noise_floor, options.clustering.threads);
+                                               noise, options.clustering.threads);
     for (const std::uint32_t function : prepared.functions)
       ++result.stored_per_row[std::size_t(y - begin_row) + function / row_functions];
     result.dark_pixels += prepared.dark_pixels.size();
-    for (std::size_t v = 0; v < prepared.dark.size(); ++v)
-      result.dark_sum[v] += double(prepared.dark[v]) * double(prepared.dark_pixels.size());
     for (const std::uint8_t inside : strip.mask)
       result.outside_mask += (inside == 0) * header.channels;
     scratch.append(prepared.rows);
@@ -220,7 +217,7 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
     const int rows = std::min(plan.strip_rows, end_row - y);
     const ReflectanceField strip = reader.read(y, rows);
     PreparedRows prepared = prepare_rows(strip, options.transform == BasisTransform::haar,
-                                         stats.noise_floor, clustering.threads);
+                                         stats.noise, clustering.threads);
     prepared.dark = dark;
     ClusterModel strip_model = bases;
     const std::size_t count = prepared.rows.rows();
@@ -277,10 +274,12 @@ BuiltPart build_part(FieldStripReader& reader, const CompressionOptions& options
 // pixel rows [bands[rank], bands[rank + 1]) strip by strip: `stored_rows(y, rows)` gives the
 // compressed field's rows [y, y + rows) of the band (y counted from the band's first row), as
 // stored. The root gets the errors merged in rank order.
-FieldErrors measure_band_errors(
-    FieldStripReader& reader, const std::vector<int>& bands, int strip_rows,
-    const std::function<CompressedField(int y, int rows)>& stored_rows, int residual_entries,
-    double white, const std::vector<std::uint8_t>& psnr_mask, unsigned threads, bool quiet) {
+FieldErrors measure_band_errors(FieldStripReader& reader, const std::vector<int>& bands,
+                                int strip_rows,
+                                const std::function<CompressedField(int y, int rows)>& stored_rows,
+                                int residual_entries, double white,
+                                const std::vector<std::uint8_t>& psnr_mask, unsigned threads,
+                                bool quiet) {
   Ranks& ranks = process_ranks();
   const int first_row = bands.at(std::size_t(ranks.rank()));
   const int end_row = bands.at(std::size_t(ranks.rank()) + 1);
@@ -324,39 +323,43 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   if (clustering.terms >= lights)
     throw Error("terms per cluster (" + std::to_string(clustering.terms) +
                 ") must be fewer than the lights (" + std::to_string(lights) + ")");
-  stats.noise_floor = options.noise_floor >= 0 ? options.noise_floor : header.noise_floor;
-  stats.residual_threshold =
-      options.residual_threshold >= 0 ? options.residual_threshold : stats.noise_floor;
+  reader.rewind();
+  stats.noise = estimate_streamed_noise(reader.read(0, std::min(plan.strip_rows, header.height)),
+                                        options.noise_floor, clustering.threads);
+  stats.residual_threshold = options.residual_threshold >= 0
+                                 ? options.residual_threshold
+                                 : default_residual_threshold(stats.noise, header);
   // 1. Read this rank's even share of the pixel rows: scratch rows, the dark model's sums, every
   // row's stored functions; counts over all ranks.
   auto start = Clock::now();
   const RankShare read_band = rank_share(ranks, header.height);
   auto scratch =
       std::make_unique<ScratchRows>(plan.scratch_folder, scratch_name, lights, clustering.threads);
-  const ReadResult read = read_strips(reader, options, plan, stats.noise_floor, read_band.first,
-                                      read_band.end, *scratch);
-  const std::size_t channel_lights = read.dark_sum.size();
-  std::vector<double> sums = read.dark_sum;
-  sums.insert(sums.end(),
-              {double(read.dark_pixels), double(read.outside_mask), double(scratch->bytes())});
-  sums.resize(channel_lights + 3 + std::size_t(header.height), 0.0);
+  const ReadResult read =
+      read_strips(reader, options, plan, stats.noise, read_band.first, read_band.end, *scratch);
+  std::vector<double> sums{double(read.dark_pixels), double(read.outside_mask),
+                           double(scratch->bytes())};
+  sums.resize(3 + std::size_t(header.height), 0.0);
   std::copy(read.stored_per_row.begin(), read.stored_per_row.end(),
-            sums.begin() + std::ptrdiff_t(channel_lights + 3 + std::size_t(read_band.first)));
+            sums.begin() + std::ptrdiff_t(3 + std::size_t(read_band.first)));
   ranks.sum_everywhere(sums.data(), sums.size());
-  stats.dark_pixels = std::size_t(sums[channel_lights]);
-  stats.outside_mask = std::int64_t(sums[channel_lights + 1]);
-  trace.scratch_bytes = std::uint64_t(sums[channel_lights + 2]);
+  stats.dark_pixels = std::size_t(sums[0]);
+  stats.outside_mask = std::int64_t(sums[1]);
+  trace.scratch_bytes = std::uint64_t(sums[2]);
   // The field's stored functions before every pixel row (row_start[y]).
   std::vector<std::uint64_t> stored_per_row, row_start{0};
   for (int y = 0; y < header.height; ++y) {
-    stored_per_row.push_back(std::uint64_t(sums[channel_lights + 3 + std::size_t(y)]));
+    stored_per_row.push_back(std::uint64_t(sums[3 + std::size_t(y)]));
     row_start.push_back(row_start.back() + stored_per_row.back());
   }
   stats.stored_rows = std::size_t(row_start.back());
   std::vector<float> dark;
-  if (stats.dark_pixels > 0)
-    for (std::size_t v = 0; v < channel_lights; ++v)
-      dark.push_back(float(sums[v] / double(stats.dark_pixels)));
+  if (stats.dark_pixels > 0) {
+    dark = stats.noise.shape;
+    if (options.transform == BasisTransform::haar)
+      for (int c = 0; c < header.channels; ++c)
+        haar_forward(dark.data() + std::size_t(c) * lights, lights, 1);
+  }
   trace.strips = (header.height + plan.strip_rows - 1) / plan.strip_rows;
   stats.functions = std::int64_t(header.pixels()) * header.channels;
   stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows) -
@@ -453,8 +456,8 @@ StreamedCompression compress_streamed(FieldStripReader& reader, const Compressio
   start = Clock::now();
   stats.residual_entries = options.residual.entries_for(lights);
   if (plan.compressed_on_disk)
-    result.strips = std::make_unique<CompressedStripFile>(plan.scratch_folder,
-                                                          scratch_name + ".compressed");
+    result.strips =
+        std::make_unique<CompressedStripFile>(plan.scratch_folder, scratch_name + ".compressed");
   const std::vector<std::uint64_t> build_starts = band_starts(result.bands);
   if (ranks.size() > 1 && !assignment.empty())
     assignment = move_assignment(ranks, assignment, refine_starts, build_starts);

@@ -16,6 +16,7 @@
 #include "core/memory_budget.hpp"
 #include "model/cluster_terms.hpp"
 #include "model/compressed_field_checks.hpp"
+#include "model/dark_gains.hpp"
 #include "model/quantization.hpp"
 
 namespace relume {
@@ -242,6 +243,20 @@ class ContainerDecoder {
         throw Error(at + ": 'basis_bits' is " + std::to_string(quantization.basis_bits) +
                     ", expected 0 (float32 bases) or 8 to 16");
     }
+    if (version >= 4) {
+      const auto step = header.find("dark_gain_step");
+      const double value = step != header.end() && step->is_number() ? step->get<double>() : -1;
+      if (!std::isfinite(value) || value < 0 || value > 3.4e38)
+        throw Error(at + ": 'dark_gain_step' is " +
+                    (step == header.end() ? std::string("missing") : step->dump()) +
+                    ", expected 0 (no gains) or a positive step");
+      field.dark_gain_step = float(value);
+      const std::int64_t block = header_integer(header, "dark_gain_block", 1, 1 << 16, at);
+      if (block != dark_gain_block)
+        throw Error(at + ": 'dark_gain_block' is " + std::to_string(block) +
+                    ", this relume reads gains per " + std::to_string(dark_gain_block) +
+                    " pixel blocks");
+    }
     decoded.widths.cluster_id_bytes = header_width_bytes(header, "cluster_id_bits", at);
     decoded.widths.residual_length_bytes = header_width_bytes(header, "residual_length_bits", at);
     decoded.widths.light_index_bytes = header_width_bytes(header, "light_index_bits", at);
@@ -296,6 +311,23 @@ class ContainerDecoder {
     field.dark.resize(values.remaining() / 4);
     for (float& v : field.dark) v = values.f32();
     check_dark(field, where("dark_pixels"));
+    if (parsed_.layout.version >= 4) decode_dark_gains(field);
+  }
+
+  // Version 4: the gains' block grid when the header gives a step and a pixel is dark, else none.
+  void decode_dark_gains(CompressedField& field) const {
+    const bool stored = field.dark_gain_step > 0 && !field.dark_pixels.empty();
+    DarkGainGrid grid = empty_dark_gain_grid(field.width, field.height, field.channels);
+    ByteReader in = sized_reader("dark_gains", {stored ? grid.values.size() : 0, 2});
+    if (!stored) return;
+    for (std::int32_t& value : grid.values) {
+      value = in.u16();
+      if (value > max_quantized_gain)
+        in.fail("holds the gain " + std::to_string(value) + " steps, expected at most " +
+                std::to_string(max_quantized_gain));
+    }
+    expand_dark_gains(field, grid);
+    check_dark_gains(field, where("dark_gains"));
   }
 
   void decode_clusters(CompressedField& field, const DecodedHeader& header) const {

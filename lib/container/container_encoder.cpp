@@ -7,13 +7,14 @@
 #include "container/container.hpp"
 #include "container/container_bit_set.hpp"
 #include "container/container_bytes.hpp"
-#include "container/container_format.hpp"
 #include "container/container_encoding.hpp"
+#include "container/container_format.hpp"
 #include "container/container_sections.hpp"
 #include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
 #include "model/cluster_terms.hpp"
 #include "model/compressed_field_checks.hpp"
+#include "model/dark_gains.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -81,6 +82,8 @@ std::string encode_header(const CompressedField& shape, const StoredCounts& coun
               {"weight_step", shape.quantization.weight_step},
               {"residual_step", shape.quantization.residual_step},
               {"basis_bits", shape.quantization.basis_bits},
+              {"dark_gain_step", shape.dark_gains.empty() ? 0.0f : shape.dark_gain_step},
+              {"dark_gain_block", dark_gain_block},
               {"cluster_id_bits", 8 * widths.cluster_id_bytes},
               {"residual_length_bits", 8 * widths.residual_length_bytes},
               {"light_index_bits", 8 * widths.light_index_bytes},
@@ -103,13 +106,18 @@ FieldSections encode_field_sections(const CompressedField& field,
     if (field.mask[q]) inside.push_back(q);
   out.mask = encode_bit_set(inside, field.mask.size());
   out.functions = encode_bit_set(stored_functions, std::uint64_t(field.functions()));
-  out.dark_pixels = encode_bit_set(
-      std::vector<std::uint64_t>(field.dark_pixels.begin(), field.dark_pixels.end()),
-      field.mask.size());
+  out.dark_pixels =
+      encode_bit_set(std::vector<std::uint64_t>(field.dark_pixels.begin(), field.dark_pixels.end()),
+                     field.mask.size());
 
   ByteWriter dark;
   for (float v : field.dark) dark.f32(v);
   out.dark = dark.take();
+  if (!field.dark_gains.empty()) {
+    ByteWriter gains;
+    for (const std::int32_t value : dark_gain_grid(field).values) gains.u16(std::uint16_t(value));
+    out.dark_gains = gains.take();
+  }
 
   const ValueQuantization& quantization = field.quantization;
   out.basis_bytes = basis_value_bytes(quantization.basis_bits);
@@ -194,7 +202,8 @@ RowSections encode_row_sections(const CompressedField& field, std::size_t first_
     ByteWriter values;
     values.reserve((e.values.size() - first_entry) * 2);
     for (std::size_t k = first_entry; k < e.values.size(); ++k)
-      values.u16(std::uint16_t(std::int16_t(std::lround(e.values[k] / quantization.residual_step))));
+      values.u16(
+          std::uint16_t(std::int16_t(std::lround(e.values[k] / quantization.residual_step))));
     out.values = values.take();
   } else {
     out.values = encode_values(
@@ -214,6 +223,7 @@ std::vector<StoredSection> sections_in_file_order(std::string header, FieldSecti
   sections.push_back({"functions", std::move(field.functions), 1});
   sections.push_back({"dark_pixels", std::move(field.dark_pixels), 1});
   sections.push_back({"dark", std::move(field.dark), 4});
+  sections.push_back({"dark_gains", std::move(field.dark_gains), 2});
   sections.push_back({"clusters", std::move(rows.clusters), widths.cluster_id_bytes});
   sections.push_back({"basis_scales", std::move(field.basis_scales), 4});
   sections.push_back({"bases", std::move(field.bases), field.basis_bytes});

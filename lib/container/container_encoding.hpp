@@ -32,7 +32,7 @@ std::string encode_header(const CompressedField& shape, const StoredCounts& coun
 
 // Raw bytes of the sections that describe the field as a whole.
 struct FieldSections {
-  std::string lights, mask, functions, dark_pixels, dark, basis_scales, bases;
+  std::string lights, mask, functions, dark_pixels, dark, dark_gains, basis_scales, bases;
   int basis_bytes = 4;  // bytes per stored basis value
 };
 

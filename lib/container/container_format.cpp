@@ -84,7 +84,13 @@ const std::vector<std::string_view>& container_section_names(std::uint32_t versi
       "clusters",       "basis_scales",     "bases",
       "weights",        "residual_offsets", "residual_indices",
       "residual_values"};
-  return version == 1 ? version1 : version2;  // version 3 has version 2's sections
+  static const std::vector<std::string_view> version4{
+      "header",           "lights",         "mask",       "functions",
+      "dark_pixels",      "dark",           "dark_gains", "clusters",
+      "basis_scales",     "bases",          "weights",    "residual_offsets",
+      "residual_indices", "residual_values"};
+  // Version 3 has version 2's sections.
+  return version == 1 ? version1 : version < 4 ? version2 : version4;
 }
 
 std::string encode_preamble(const ContainerLayout& layout,

@@ -230,7 +230,7 @@ std::map<std::string, CompressedField> store_containers(EvaluationResult& result
     CompressionStats stats;
     CompressedField stored =
         build_compressed_field(field, prepared, run.model, BasisTransform::identity, entries,
-                               field.noise_floor, {}, stats, options.threads);
+                               result.residual_threshold, {}, stats, options.threads);
     store_with_precision(field, stored, precision);
     return stored;
   };
@@ -307,7 +307,9 @@ EvaluationResult evaluate_field(const ReflectanceField& field, const Environment
       throw Error("--terms " + std::to_string(terms) + " (expected 1 to " +
                   std::to_string(std::min(max_cluster_terms, field.lights() - 1)) + " for " +
                   std::to_string(field.lights()) + " lights)");
-  const PreparedRows prepared = prepare_rows(field, false, field.noise_floor, options.threads);
+  result.noise = estimate_noise(field, options.threads);
+  result.residual_threshold = default_residual_threshold(result.noise, field);
+  const PreparedRows prepared = prepare_rows(field, false, result.noise, options.threads);
   if (prepared.functions.empty())
     throw Error("the field has no function to evaluate (all are outside the mask or zero)");
   result.stored_functions = prepared.functions.size();

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "compress/noise_model.hpp"
 #include "eval/evaluation_options.hpp"
 #include "eval/function_classes.hpp"
 #include "eval/grid_runs.hpp"
@@ -90,8 +91,10 @@ struct EvaluationResult {
   EvaluationOptions settings;  // as run (resolve_evaluation_options)
   std::string assignment;      // where the L1 reassignment ran: "cpu" or the OpenCL device
   std::size_t stored_functions = 0, dark_pixels = 0;
-  FunctionClasses classes;    // per stored function
-  std::vector<EvalRun> runs;  // in grid order (run_grid)
+  NoiseModel noise;              // estimated from the field (compress's default)
+  float residual_threshold = 0;  // residual entries at or below it are dropped
+  FunctionClasses classes;       // per stored function
+  std::vector<EvalRun> runs;     // in grid order (run_grid)
   std::vector<ErrorPoint> errors;
   std::vector<ErrorRatio> ratios;
   std::vector<SparsenessPoint> sparseness;

@@ -43,8 +43,9 @@ constexpr const char* description =
     "lights)); each row is sorted by |value| descending, so that its prefixes are shorter "
     "residuals. Stored row s is W[s] @ F[cluster[s]] + residual row s.\n"
     "dark_pixels: uint32 (n,), ascending pixel indices y * width + x, inside the mask, "
-    "without stored rows: channel c of each is the dark model dark[c]. dark: float32 "
-    "(channels, lights); (0, lights) when no pixel is dark. Every other function is zero "
+    "without stored rows: channel c of dark pixel d is dark_gains[d, c] * dark[c]. dark: float32 "
+    "(channels, lights); (0, lights) when no pixel is dark. dark_gains: float32 (n, channels). "
+    "Every other function is zero "
     "(outside the mask, or all zero).\n"
     "transform: int64, the basis of F, the residual and dark. 0: the lights (identity). 1: "
     "Haar; undo it on each function with the inverse of the orthonormal Haar transform over "
@@ -100,6 +101,11 @@ std::string compressed_field_npz(const CompressedField& field) {
       field.dark_pixels.size());
   add(entries, "dark", "<f4", {field.dark.size() / lights, lights}, field.dark.data(),
       field.dark.size());
+  std::vector<float> gains(field.dark_pixels.size() * std::size_t(field.channels));
+  for (std::size_t v = 0; v < gains.size(); ++v)
+    gains[v] = dark_gain(field, v / std::size_t(field.channels), int(v % field.channels));
+  add(entries, "dark_gains", "<f4", {field.dark_pixels.size(), std::size_t(field.channels)},
+      gains.data(), gains.size());
   const bool non_negative = field.non_negative;
   add(entries, "non_negative", "|b1", {}, &non_negative, 1);
   const ValueQuantization& quantization = field.quantization;

@@ -198,6 +198,23 @@ void check_dark(const CompressedField& field, const std::string& where) {
                   std::to_string(field.dark[v]) + ", expected finite");
 }
 
+void check_dark_gains(const CompressedField& field, const std::string& where) {
+  if (field.dark_gains.empty()) return;
+  const std::size_t expected = field.dark_pixels.size() * std::size_t(field.channels);
+  if (field.dark_gains.size() != expected)
+    throw Error(where + ": " + std::to_string(field.dark_gains.size()) + " dark gains, expected " +
+                std::to_string(expected) + " (dark pixels x channels, or none)");
+  if (!std::isfinite(field.dark_gain_step) || !(field.dark_gain_step > 0))
+    throw Error(where + ": the dark gain step is " + std::to_string(field.dark_gain_step) +
+                ", expected a finite value > 0");
+  for (std::size_t v = 0; v < field.dark_gains.size(); ++v)
+    if (!std::isfinite(field.dark_gains[v]) || field.dark_gains[v] < 0)
+      throw Error(where + ": the dark gain of pixel " +
+                  std::to_string(field.dark_pixels[v / field.channels]) + " channel " +
+                  std::to_string(v % field.channels) + " is " +
+                  std::to_string(field.dark_gains[v]) + ", expected finite and >= 0");
+}
+
 void validate_compressed_field(const CompressedField& field, const std::string& context) {
   check_dimensions(field, context);
   check_lights(field, context);
@@ -210,6 +227,7 @@ void validate_compressed_field(const CompressedField& field, const std::string& 
   check_residual_indices(field, context);
   check_residual_values(field, context);
   check_dark(field, context);
+  check_dark_gains(field, context);
 }
 
 }  // namespace relume

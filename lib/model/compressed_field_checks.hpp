@@ -44,6 +44,9 @@ void check_residual_values(const CompressedField& field, const std::string& wher
 // channels x lights finite dark values when any pixel is dark (none otherwise). Needs valid
 // functions and mask.
 void check_dark(const CompressedField& field, const std::string& where);
+// The dark gains: none, or one per dark pixel and channel, finite, >= 0, with a finite step > 0.
+// (The container writer also needs them equal within each block: model/dark_gains.hpp.)
+void check_dark_gains(const CompressedField& field, const std::string& where);
 // All of the above, in that order; `context` prefixes the message (for example "cannot write
 // scene.relume").
 void validate_compressed_field(const CompressedField& field, const std::string& context);

@@ -34,6 +34,13 @@ CompressedField compressed_rows(const CompressedField& field, int first_row, int
   for (auto q = dark_begin; q != dark_end; ++q)
     strip.dark_pixels.push_back(std::uint32_t(*q - first_pixel));
   if (!strip.dark_pixels.empty()) strip.dark = field.dark;
+  if (!field.dark_gains.empty() && !strip.dark_pixels.empty()) {
+    const auto channels = std::ptrdiff_t(field.channels);
+    strip.dark_gains.assign(
+        field.dark_gains.begin() + (dark_begin - field.dark_pixels.begin()) * channels,
+        field.dark_gains.begin() + (dark_end - field.dark_pixels.begin()) * channels);
+    strip.dark_gain_step = field.dark_gain_step;
+  }
 
   const std::size_t first_function = first_pixel * field.channels;
   const std::size_t end_function = end_pixel * field.channels;
@@ -71,6 +78,12 @@ void append_compressed_rows(CompressedField& field, const CompressedField& strip
   const std::uint32_t pixel_offset = std::uint32_t(std::size_t(field.height) * field.width);
   const std::uint32_t function_offset = pixel_offset * std::uint32_t(field.channels);
   field.mask.insert(field.mask.end(), strip.mask.begin(), strip.mask.end());
+  const bool field_gains = !field.dark_gains.empty() || field.dark_pixels.empty();
+  const bool strip_gains = !strip.dark_gains.empty() || strip.dark_pixels.empty();
+  if (field_gains != strip_gains && !field.dark_pixels.empty() && !strip.dark_pixels.empty())
+    throw Error("cannot stack a compressed strip with dark gains and one without");
+  field.dark_gains.insert(field.dark_gains.end(), strip.dark_gains.begin(), strip.dark_gains.end());
+  if (!strip.dark_gains.empty()) field.dark_gain_step = strip.dark_gain_step;
   for (const std::uint32_t q : strip.dark_pixels) field.dark_pixels.push_back(pixel_offset + q);
   if (field.dark.empty()) field.dark = strip.dark;
   for (const std::uint32_t p : strip.stored_function)

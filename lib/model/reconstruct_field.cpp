@@ -96,9 +96,12 @@ void reconstruct_function(const CompressedField& field, std::int64_t stored_row,
     std::fill(out, out + field.lights, 0.0f);
     return;
   }
-  if (stored_row < 0) {  // dark_model_row(c)
-    const float* dark = field.dark.data() + std::size_t(-2 - stored_row) * field.lights;
-    std::copy(dark, dark + field.lights, out);
+  if (stored_row < 0) {  // dark_model_row(d, channels, c)
+    const std::size_t code = std::size_t(-2 - stored_row);
+    const int c = int(code % std::size_t(field.channels));
+    const float gain = dark_gain(field, code / std::size_t(field.channels), c);
+    const float* dark = field.dark.data() + std::size_t(c) * field.lights;
+    for (int i = 0; i < field.lights; ++i) out[i] = gain * dark[i];
   } else {
     accumulate_stored_row(field, std::size_t(stored_row), residual_cap, sum);
     std::copy(sum, sum + field.lights, out);
@@ -110,9 +113,10 @@ std::vector<std::int64_t> stored_row_of_function(const CompressedField& field) {
   std::vector<std::int64_t> row_of(static_cast<std::size_t>(field.functions()), unstored_row);
   for (std::size_t r = 0; r < field.stored_rows(); ++r)
     row_of[field.stored_function[r]] = std::int64_t(r);
-  for (const std::uint32_t q : field.dark_pixels)
+  for (std::size_t d = 0; d < field.dark_pixels.size(); ++d)
     for (int c = 0; c < field.channels; ++c)
-      row_of[std::size_t(q) * field.channels + c] = dark_model_row(c);
+      row_of[std::size_t(field.dark_pixels[d]) * field.channels + c] =
+          dark_model_row(d, field.channels, c);
   return row_of;
 }
 
@@ -144,10 +148,11 @@ ReflectanceField reconstruct_field(const CompressedField& field, int residual_ca
     reconstruct_function(field, std::int64_t(r), residual_cap, scratch[worker].data(),
                          result.values.row(field.stored_function[r]).data());
   });
-  for (const std::uint32_t q : field.dark_pixels)
+  for (std::size_t d = 0; d < field.dark_pixels.size(); ++d)
     for (int c = 0; c < field.channels; ++c)
-      reconstruct_function(field, dark_model_row(c), residual_cap, nullptr,
-                           result.values.row(Eigen::Index(q) * field.channels + c).data());
+      reconstruct_function(
+          field, dark_model_row(d, field.channels, c), residual_cap, nullptr,
+          result.values.row(Eigen::Index(field.dark_pixels[d]) * field.channels + c).data());
   return result;
 }
 

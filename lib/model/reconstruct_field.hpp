@@ -17,9 +17,12 @@ void reconstruct_stored_row(const CompressedField& field, std::size_t row, int r
                             float* out);
 
 // How stored_row_of_function marks a function without a stored row: -1 when it relights to zero,
-// dark_model_row(c) when it belongs to a dark pixel and relights as the dark model of channel c.
+// dark_model_row(d, channels, c) when it is channel c of dark pixel number d (its index in
+// dark_pixels) and relights as that pixel's gain times the dark model of channel c.
 inline constexpr std::int64_t unstored_row = -1;
-constexpr std::int64_t dark_model_row(int channel) { return -2 - channel; }
+constexpr std::int64_t dark_model_row(std::size_t dark_index, int channels, int channel) {
+  return -2 - (std::int64_t(dark_index) * channels + channel);
+}
 
 // Function p's reconstruction in the light basis into `out` (field.lights floats), given what
 // stored_row_of_function says of it; `sum` is scratch of field.lights doubles. The field is
@@ -27,7 +30,7 @@ constexpr std::int64_t dark_model_row(int channel) { return -2 - channel; }
 void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
                           double* sum, float* out);
 
-// Stored row of every function, or unstored_row / dark_model_row(c) where it has none.
+// Stored row of every function, or unstored_row / dark_model_row(...) where it has none.
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
 
 // Throws Error for a negative residual cap (all_residual_entries keeps every entry).

@@ -96,9 +96,10 @@ Image CompressedRelightReference::relight(const LightRgb& light, int residual_ca
       });
   if (terms == RelightTerms::all && !field.dark_pixels.empty()) {
     const std::vector<double> dark = dark_light_products(field, basis_light);
-    for (const std::uint32_t q : field.dark_pixels)
+    for (std::size_t d = 0; d < field.dark_pixels.size(); ++d)
       for (int c = 0; c < field.channels; ++c)
-        image.pixels[std::size_t(q) * field.channels + c] = static_cast<float>(dark[c]);
+        image.pixels[std::size_t(field.dark_pixels[d]) * field.channels + c] =
+            static_cast<float>(dark_gain(field, d, c) * dark[c]);
   }
   return image;
 }

@@ -161,16 +161,23 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
     std::vector<std::uint32_t> runs;
     for (std::size_t d = 0; d < field.dark_pixels.size(); ++d) {
       const std::uint32_t q = field.dark_pixels[d];
-      if (!runs.empty() && runs[runs.size() - 2] + runs.back() == q &&
-          runs.back() < dark_run_pixels)
-        ++runs.back();
+      if (!runs.empty() && runs[runs.size() - 3] + runs[runs.size() - 2] == q &&
+          runs[runs.size() - 2] < dark_run_pixels)
+        ++runs[runs.size() - 2];
       else
-        runs.insert(runs.end(), {q, 1u});
+        runs.insert(runs.end(), {q, 1u, std::uint32_t(d)});
     }
-    dark_run_count_ = runs.size() / 2;
+    dark_run_count_ = runs.size() / 3;
     dark_pixel_count_ = field.dark_pixels.size();
     dark_ = field.dark;
     dark_runs_ = upload(cl_context, runs, device_bytes_);
+    // A field without gains (an older container) relights every dark pixel with gain 1.
+    dark_gains_ = upload(
+        cl_context,
+        field.dark_gains.empty()
+            ? std::vector<float>(std::max<std::size_t>(1, dark_pixel_count_ * field.channels), 1.0f)
+            : field.dark_gains,
+        device_bytes_);
   } catch (const cl::Error& error) {
     rethrow_opencl(error, context,
                    "uploading a compressed field of " + std::to_string(device_bytes_) + "+ bytes");
@@ -274,12 +281,14 @@ OpenClRelighter::Launch OpenClRelighter::launch_dark(BatchProgram& program) {
   kernel.setArg(1, cl_uint(frame_stride_));
   kernel.setArg(2, dark_runs_);
   kernel.setArg(3, program.dark);
-  kernel.setArg(4, program.output);
+  kernel.setArg(4, dark_gains_);
+  kernel.setArg(5, program.output);
   cl::Event event;
   context_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dark_run_count_),
                                         cl::NullRange, nullptr, &event);
   KernelTiming timing{"dark", 0, 0};
-  timing.bytes = dark_run_count_ * 8 + std::uint64_t(shape_.channels) * program.batch_pad * 4 +
+  timing.bytes = dark_run_count_ * 12 + std::uint64_t(shape_.channels) * program.batch_pad * 4 +
+                 dark_pixel_count_ * shape_.channels * sizeof(float) +
                  dark_pixel_count_ * shape_.channels * std::uint64_t(program.batch) * sizeof(float);
   return {timing, event};
 }

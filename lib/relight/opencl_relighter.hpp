@@ -160,7 +160,8 @@ class OpenClRelighter {
   cl::Buffer tail_offsets_;
   cl::Buffer residual_values_;
   cl::Buffer residual_lights_;
-  cl::Buffer dark_runs_;  // (first pixel, pixels) of each run of dark pixels
+  cl::Buffer dark_runs_;   // (first pixel, pixels, its dark index) of each run of dark pixels
+  cl::Buffer dark_gains_;  // dark pixels x channels
   std::size_t dark_run_count_ = 0;
   std::uint64_t dark_pixel_count_ = 0;
   std::vector<float> dark_;     // the field's dark model, channels x lights

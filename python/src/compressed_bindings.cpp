@@ -186,6 +186,18 @@ memory; a view keeps it alive.)");
           "float32 (channels, lights), in the basis of bases: the dark model, (0, lights) when no "
           "pixel is dark.")
       .def_property_readonly(
+          "dark_gains",
+          [](const CompressedObject& c) {
+            const CompressedField& f = c.field;
+            py::array_t<float> gains({py::ssize_t(f.dark_pixels.size()), py::ssize_t(f.channels)});
+            float* out = gains.mutable_data();
+            for (std::size_t v = 0; v < f.dark_pixels.size() * std::size_t(f.channels); ++v)
+              out[v] = dark_gain(f, v / std::size_t(f.channels), int(v % f.channels));
+            return gains;
+          },
+          "float32 (n, channels): channel c of dark pixel d relights as dark_gains[d, c] * "
+          "dark[c] (ones for containers before version 4).")
+      .def_property_readonly(
           "weights_precision",
           [](const CompressedObject& c) { return to_string(c.storage.weights); },
           "How save() stores W by default: 'float32' or 'float16'.")

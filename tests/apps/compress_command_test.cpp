@@ -23,7 +23,8 @@ namespace relume {
 namespace {
 
 // Two planted clusters (2 terms, 24 lights) with one residual entry per function; the left half
-// of the image is inside the mask.
+// of the image is inside the mask. The functions are exact and spatially unrelated, so that no
+// estimate tells them from noise: the tests give --noise-floor 0 (every function stored).
 ReflectanceField small_field(std::uint64_t seed) {
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<float> uniform(0.1f, 1.0f);
@@ -62,10 +63,11 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 TEST(CompressCommand, WritesAContainerAndAReport) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(1));
-  const auto result = testing::run_relume(
-      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() +
-      "' --clusters 2 --terms 2 --residual 1 --threads 2 --report '" +
-      (dir / "report.json").string() + "'");
+  const auto result =
+      testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+                          (dir / "out.relume").string() +
+                          "' --clusters 2 --terms 2 --residual 1 --threads 2 --report '" +
+                          (dir / "report.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const CompressedField compressed = read_container(dir / "out.relume");
   EXPECT_EQ(compressed.clusters, 2);
@@ -92,7 +94,8 @@ TEST(CompressCommand, WritesAContainerAndAReport) {
             cost["error_masked_float32"].get<double>() * (1 + 0.01) + 1e-12);
 
   const auto exact = testing::run_relume(
-      "compress '" + (dir / "field").string() + "' -o '" + (dir / "float.relume").string() +
+      "compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+      (dir / "float.relume").string() +
       "' --clusters 2 --terms 2 --residual 1 --threads 2 --weights-precision float32 "
       "--residual-precision float32 --bases-precision float32 --report '" +
       (dir / "float.json").string() + "'");
@@ -107,10 +110,11 @@ TEST(CompressCommand, WritesAContainerAndAReport) {
 TEST(CompressCommand, ReportsTheLargestPerLightErrorAndTheNegativeValues) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(3));
-  const auto result = testing::run_relume(
-      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() +
-      "' --clusters 2 --terms 2 --residual 0 --threads 2 --report '" +
-      (dir / "report.json").string() + "'");
+  const auto result =
+      testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+                          (dir / "out.relume").string() +
+                          "' --clusters 2 --terms 2 --residual 0 --threads 2 --report '" +
+                          (dir / "report.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const ReflectanceField original = load_field(dir / "field");
   const ReflectanceField rebuilt = reconstruct_field(read_container(dir / "out.relume"));
@@ -149,11 +153,12 @@ TEST(CompressCommand, HalfPrecisionErrorIsMeasuredOnTheStoredFileAndItsCostRepor
   testing::TempDir dir;
   const ReflectanceField field = small_field(2);
   write_field_folder(dir / "field", field);
-  const auto result = testing::run_relume(
-      "compress '" + (dir / "field").string() + "' -o '" + (dir / "half.relume").string() +
-      "' --clusters 2 --terms 2 --residual 1 --weights-precision float16 "
-      "--residual-precision float16 --report '" +
-      (dir / "report.json").string() + "'");
+  const auto result =
+      testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+                          (dir / "half.relume").string() +
+                          "' --clusters 2 --terms 2 --residual 1 --weights-precision float16 "
+                          "--residual-precision float16 --report '" +
+                          (dir / "report.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json report = read_json(dir / "report.json");
   const double stored_error = relative_error(field, read_container(dir / "half.relume"), true).mean;
@@ -176,8 +181,8 @@ TEST(CompressCommand, SeveralInputsGoToAFolderAndAFailureDoesNotStopTheOthers) {
   write_field_folder(dir / "first", small_field(2));
   write_field_folder(dir / "second", small_field(3));
   const auto result = testing::run_relume(
-      "compress '" + (dir / "first").string() + "' '" + (dir / "missing").string() + "' '" +
-      (dir / "second").string() + "' -o '" + (dir / "out").string() +
+      "compress --noise-floor 0 '" + (dir / "first").string() + "' '" + (dir / "missing").string() +
+      "' '" + (dir / "second").string() + "' -o '" + (dir / "out").string() +
       "' --clusters 2 --terms 2 --residual 10% --threads 2 --report '" +
       (dir / "report.json").string() + "'");
   EXPECT_NE(result.exit_code, 0);
@@ -193,8 +198,8 @@ TEST(CompressCommand, SeveralInputsGoToAFolderAndAFailureDoesNotStopTheOthers) {
 TEST(CompressCommand, RefusesBadArguments) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(4));
-  const std::string base =
-      "compress '" + (dir / "field").string() + "' -o '" + (dir / "out.relume").string() + "' ";
+  const std::string base = "compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+                           (dir / "out.relume").string() + "' ";
   for (const char* bad : {"--residual 5%%", "--residual -2", "--terms 0", "--transform dct",
                           "--solver simplex", "--assign fpga", "--terms 30"}) {
     const auto result = testing::run_relume(base + bad);
@@ -214,10 +219,10 @@ TEST(CompressCommand, TargetErrorReachesTheTargetWithTheSmallestContainerTried) 
   for (std::int64_t i = 0; i < field.values.size(); ++i) field.values.data()[i] += noise(random);
   write_field_folder(dir / "field", field);
   const double target = 0.002;
-  const auto result = testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
-                                          (dir / "t.relume").string() + "' --target-error " +
-                                          std::to_string(target) + " --report '" +
-                                          (dir / "report.json").string() + "'");
+  const auto result = testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() +
+                                          "' -o '" + (dir / "t.relume").string() +
+                                          "' --target-error " + std::to_string(target) +
+                                          " --report '" + (dir / "report.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json report = read_json(dir / "report.json");
   const CompressedField compressed = read_container(dir / "t.relume");
@@ -248,9 +253,10 @@ TEST(CompressCommand, TargetBytesFitsWithTheLowestErrorOfThePairsTried) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(5));
   const auto compress = [&](const std::string& name, const std::string& target) {
-    const auto result = testing::run_relume(
-        "compress '" + (dir / "field").string() + "' -o '" + (dir / (name + ".relume")).string() +
-        "' " + target + " --report '" + (dir / (name + ".json")).string() + "'");
+    const auto result =
+        testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+                            (dir / (name + ".relume")).string() + "' " + target + " --report '" +
+                            (dir / (name + ".json")).string() + "'");
     EXPECT_EQ(result.exit_code, 0) << result.output;
     return read_json(dir / (name + ".json"));
   };
@@ -293,8 +299,8 @@ TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(6));
   const double target = 38;
-  auto result = testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
-                                    (dir / "p.relume").string() + "' --target-psnr " +
+  auto result = testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() +
+                                    "' -o '" + (dir / "p.relume").string() + "' --target-psnr " +
                                     std::to_string(target) + " --target-region mask --report '" +
                                     (dir / "p.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
@@ -313,7 +319,7 @@ TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
   // The default region is the whole frame: the unstored half of small_field counts as lost, so
   // the same target needs more than the mask's PSNR can give and is missed.
   result =
-      testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+      testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
                           (dir / "f.relume").string() + "' --target-psnr " +
                           std::to_string(target) + " --report '" + (dir / "f.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
@@ -322,14 +328,14 @@ TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
             frame["psnr_8bit"]["whole_frame"].get<double>() >= target);
   EXPECT_LT(frame["psnr_8bit"]["whole_frame"].get<double>(), target);
 
-  result = testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+  result = testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
                                (dir / "q.relume").string() + "' --target-psnr 300 --report '" +
                                (dir / "q.json").string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_FALSE(read_json(dir / "q.json")["rate_target"]["met"].get<bool>());
 
   result =
-      testing::run_relume("compress '" + (dir / "field").string() + "' -o '" +
+      testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
                           (dir / "r.relume").string() + "' --target-psnr 40 --target-bytes 1000");
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("--target-bytes and --target-psnr are two targets"),
@@ -457,6 +463,7 @@ TEST(CompressCheckpoint, ResumingContinuesTheIterationsOfTheCheckpoint) {
   options.clustering.max_iterations = 3;
   options.clustering.settle_fraction = -1;  // run every iteration
   options.residual.entries = 1;
+  options.noise_floor = 0;  // small_field is exact: no noise to estimate
 
   // An interrupted run: keep the checkpoint of the second iteration.
   CompressionStats stats;

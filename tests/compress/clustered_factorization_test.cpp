@@ -12,6 +12,7 @@
 
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_size_rules.hpp"
+#include "compress/noise_model.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/reconstruct_field.hpp"
 
@@ -67,6 +68,9 @@ CompressionOptions options_for(int clusters, int terms, int residual) {
   options.clustering.quiet = true;
   options.clustering.threads = 2;
   options.residual.entries = residual;
+  // The planted functions are exact and spatially unrelated, so that no estimate tells them
+  // from noise: no noise floor, every function stored.
+  options.noise_floor = 0;
   return options;
 }
 
@@ -211,7 +215,8 @@ TEST(ClusteredFactorization, SmallClustersMergeIntoTheClusterThatFitsTheirRows) 
   // Rows from two planted subspaces; a third cluster holds 5 rows of subspace 0 with a random
   // basis. With a minimum of 10 it is dissolved and its rows join cluster 0.
   const PlantedField planted = planted_field(10, 10, 2, 2, 32, 0, 29);
-  const PreparedRows prepared = prepare_rows(planted.field, false, 0.0f, 1);
+  const PreparedRows prepared =
+      prepare_rows(planted.field, false, noise_floor_model(planted.field, 0), 1);
   ClusterModel model;
   model.terms = 2;
   model.lights = 32;

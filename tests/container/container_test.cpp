@@ -343,13 +343,45 @@ TEST(Container, MaskAndFunctionsUseTheSmallerOfBitmapAndRuns) {
   expect_identical(sparse, read_container(dir / "b.relume"));
 }
 
+// sample_field with dark pixels and their gains: every section holds bytes.
+CompressedField sample_field_with_dark_pixels() {
+  RandomFieldShape shape;
+  shape.width = 10;
+  shape.height = 9;
+  shape.channels = 3;
+  shape.lights = 10;
+  shape.clusters = 3;
+  shape.terms = 2;
+  shape.residual_per_function = 5;
+  shape.stored_fraction = 0.3;
+  CompressedField field = random_compressed_field(shape);
+  testing::add_dark_pixels(field);
+  testing::add_dark_gains(field);
+  return field;
+}
+
+TEST(Container, DarkGainsRoundTripAsOneValuePerBlock) {
+  TempDir dir;
+  const CompressedField field = sample_field_with_dark_pixels();
+  ASSERT_FALSE(field.dark_gains.empty());
+  write_container(dir / "g.relume", field);
+  const CompressedField read = read_container(dir / "g.relume");
+  EXPECT_EQ(read.dark_gains, field.dark_gains);
+  EXPECT_EQ(read.dark_gain_step, field.dark_gain_step);
+  // A gain off the step cannot be stored: refused, naming the pixel.
+  CompressedField off_step = field;
+  off_step.dark_gains.back() += 0.5f * off_step.dark_gain_step;
+  EXPECT_THAT(testing::error_message([&] { write_container(dir / "m.relume", off_step); }),
+              ::testing::HasSubstr(std::to_string(off_step.dark_pixels.back())));
+}
+
 TEST(Container, AnAlteredByteInAnySectionIsRefusedNamingTheSection) {
   TempDir dir;
   const auto path = dir / "a.relume";
-  write_container(path, sample_field());
+  write_container(path, sample_field_with_dark_pixels());
   const std::string original = read_file(path);
   const ContainerLayout layout = describe_container(path);
-  ASSERT_EQ(layout.sections.size(), 13u);
+  ASSERT_EQ(layout.sections.size(), 14u);
   for (const ContainerSection& section : layout.sections) {
     if (section.bytes == 0) continue;  // basis_scales of float bases: nothing to alter
     std::string altered = original;
@@ -407,11 +439,11 @@ TEST(Container, ForeignFilesWrongMagicAndVersionsGetClearErrors) {
   EXPECT_NE(message.find("magic"), std::string::npos) << message;
 
   std::string version = original;
-  version[8] = 4;
+  version[8] = 5;
   write_bytes(path, version);
   message = read_error(path);
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("version 4 is not supported (this relume reads versions 1 to 3)"),
+  EXPECT_NE(message.find("version 5 is not supported (this relume reads versions 1 to 4)"),
             std::string::npos)
       << message;
 
@@ -592,26 +624,40 @@ std::string with_version(const std::filesystem::path& path, std::uint32_t versio
   return bytes;
 }
 
+// Files that relume 3-format writers made (tests/container/data, written from sample_field and
+// testing::add_dark_pixels before version 4 added the dark gains).
+std::filesystem::path version_three_file(const std::string& name) {
+  return testing::source_dir() / "tests/container/data" / name;
+}
+
+TEST(Container, VersionThreeFilesStillRead) {
+  const CompressedField field = sample_field();
+  EXPECT_EQ(describe_container(version_three_file("v3_sample.relume")).version, 3u);
+  expect_identical(field, read_container(version_three_file("v3_sample.relume")));
+
+  // Dark pixels of version 3 have no gains: each relights as the dark model itself (gain 1).
+  const CompressedField dark = read_container(version_three_file("v3_dark.relume"));
+  ASSERT_FALSE(dark.dark_pixels.empty());
+  EXPECT_TRUE(dark.dark_gains.empty());
+  const ReflectanceField back = reconstruct_field(dark);
+  const std::uint32_t q = dark.dark_pixels.back();
+  for (int i = 0; i < dark.lights; ++i)
+    EXPECT_EQ(back.values(q * dark.channels, i), dark.dark[std::size_t(i)]);
+}
+
 TEST(Container, VersionTwoFilesStillRead) {
   // Version 3 differs from version 2 only where a cluster leaves a basis row unused: then
   // version 2 stored its weights (zeros) and version 3 does not. A field that uses every row
   // has the same bytes in both, so the version-2 file is the version-3 file relabelled.
   TempDir dir;
-  const CompressedField field = sample_field();
-  write_container(dir / "v3.relume", field);
-  write_bytes(dir / "v2.relume", with_version(dir / "v3.relume", 2));
+  write_bytes(dir / "v2.relume", with_version(version_three_file("v3_sample.relume"), 2));
   EXPECT_EQ(describe_container(dir / "v2.relume").version, 2u);
-  expect_identical(field, read_container(dir / "v2.relume"));
+  expect_identical(sample_field(), read_container(dir / "v2.relume"));
 
   // Where a row is unused, a version-2 reader expects every weight: the version-3 bytes are one
   // weight per stored row of cluster 0 short of that, and refused so.
-  CompressedField unused = field;
-  std::fill_n(unused.bases.begin() + unused.lights, unused.lights, 0.0f);  // cluster 0, term 1
-  for (std::size_t r = 0; r < unused.stored_rows(); ++r)
-    if (unused.cluster[r] == 0) unused.weights(Eigen::Index(r), 1) = 0;
-  write_container(dir / "unused.relume", unused);
-  expect_identical(unused, read_container(dir / "unused.relume"));
-  write_bytes(dir / "unused_v2.relume", with_version(dir / "unused.relume", 2));
+  const auto unused = version_three_file("v3_unused_row.relume");
+  write_bytes(dir / "unused_v2.relume", with_version(unused, 2));
   const std::string message = read_error(dir / "unused_v2.relume");
   EXPECT_NE(message.find("section 'weights'"), std::string::npos) << message;
 }
@@ -791,9 +837,9 @@ TEST(InfoCommand, PrintsDimensionsSectionsAndRatio) {
   for (const auto& section : info["sections"])
     section_total += section["bytes"].get<std::uint64_t>();
   EXPECT_EQ(section_total + info["preamble_bytes"].get<std::uint64_t>(), file_bytes);
-  EXPECT_EQ(info["sections"][12]["name"], "residual_values");
-  EXPECT_EQ(info["sections"][12]["raw_bytes"], field.residual.nonzeros() * 2);
-  EXPECT_LE(info["sections"][12]["bytes"], field.residual.nonzeros() * 2);
+  EXPECT_EQ(info["sections"][13]["name"], "residual_values");
+  EXPECT_EQ(info["sections"][13]["raw_bytes"], field.residual.nonzeros() * 2);
+  EXPECT_LE(info["sections"][13]["bytes"], field.residual.nonzeros() * 2);
   EXPECT_DOUBLE_EQ(info["bits_per_stored_row"].get<double>(),
                    8.0 * double(file_bytes) / double(field.stored_rows()));
 

@@ -41,6 +41,8 @@ std::string crafted_container(std::int64_t width, std::int64_t height, const flo
                            {"cluster_id_bits", 8},
                            {"residual_length_bits", 8},
                            {"light_index_bits", 8},
+                           {"dark_gain_step", 0},
+                           {"dark_gain_block", 8},
                            {"parameters", nlohmann::json::object()}};
   header.update(header_keys);
   ByteWriter lights;

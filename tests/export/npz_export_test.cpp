@@ -100,7 +100,8 @@ TEST(NpzExport, NumpyLoadsEveryArrayWithTheDescribedTypeAndShape) {
       "  'residual_indptr': ('u4', (rows + 1,)),\n"
       "  'residual_indices': ('u4', (d['residual_data'].size,)),\n"
       "  'residual_data': ('f4', (int(d['residual_indptr'][-1]),)),\n"
-      "  'dark_pixels': ('u4', (0,)), 'dark': ('f4', (0, 23)), 'non_negative': ('b1', ()),\n"
+      "  'dark_pixels': ('u4', (0,)), 'dark': ('f4', (0, 23)),\n"
+      "  'dark_gains': ('f4', (0, 3)), 'non_negative': ('b1', ()),\n"
       "  'weight_step': ('f4', ()), 'residual_step': ('f4', ()), 'basis_bits': ('i8', ()),\n"
       "  'basis_scales': ('f4', (0, 3)), 'description': ('U', ())}\n"
       "assert sorted(d.files) == sorted(expected), d.files\n"
@@ -116,7 +117,8 @@ TEST(NpzExport, NumpyLoadsEveryArrayWithTheDescribedTypeAndShape) {
 }
 
 // A field with every part the archive carries: quantized values, the Haar basis (over an odd
-// light count), dark pixels, pixels outside the mask and intensities other than one.
+// light count), dark pixels with their gains, pixels outside the mask and intensities other than
+// one.
 CompressedField field_with_every_part(int channels, BasisTransform transform) {
   RandomFieldShape shape;
   shape.width = 9, shape.height = 7, shape.channels = channels, shape.lights = 23;
@@ -126,6 +128,7 @@ CompressedField field_with_every_part(int channels, BasisTransform transform) {
       quantize_values(random_compressed_field(shape), {1.0f / 4096, 1.0f / 8192, 12});
   field.transform = transform;
   testing::add_dark_pixels(field);
+  testing::add_dark_gains(field);
   for (int i = 0; i < field.lights; ++i)
     for (int c = 0; c < 3; ++c) field.intensities(i, c) = 0.5f + 0.125f * float((3 * i + c) % 13);
   field.non_negative = true;

@@ -43,7 +43,9 @@ def field_values(archive):
     values[archive["stored_function"]] = stored
     dark_pixels = archive["dark_pixels"].astype(np.int64)
     if dark_pixels.size:
-        values[dark_pixels[:, None] * channels + np.arange(channels)] = archive["dark"]
+        gains = archive["dark_gains"].astype(np.float64)  # (n, channels)
+        values[dark_pixels[:, None] * channels + np.arange(channels)] = (
+            gains[:, :, None] * archive["dark"].astype(np.float64)[None, :, :])
     if int(archive["transform"]) == 1:
         values = haar_inverse(values)
     return values

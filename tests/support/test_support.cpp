@@ -9,6 +9,8 @@
 #include <random>
 #include <relume/error.hpp>
 
+#include "model/dark_gains.hpp"
+
 namespace relume::testing {
 namespace fs = std::filesystem;
 
@@ -119,6 +121,13 @@ void add_dark_pixels(CompressedField& field) {
     }
   field.dark.assign(std::size_t(field.channels) * field.lights, 0.0f);
   for (std::size_t v = 0; v < field.dark.size(); ++v) field.dark[v] = 0.001f * float(v % 7);
+}
+
+void add_dark_gains(CompressedField& field) {
+  field.dark_gain_step = 0.125f;
+  DarkGainGrid grid = empty_dark_gain_grid(field.width, field.height, field.channels);
+  for (std::size_t v = 0; v < grid.values.size(); ++v) grid.values[v] = std::int32_t(3 + v % 13);
+  expand_dark_gains(field, grid);
 }
 
 }  // namespace relume::testing

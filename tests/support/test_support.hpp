@@ -92,4 +92,8 @@ inline std::filesystem::path source_dir() { return RELUME_SOURCE_DIR; }
 // gets a dark model (small values, channels x lights).
 void add_dark_pixels(CompressedField& field);
 
+// Gains for `field`'s dark pixels: one per block and channel, multiples of a step, as the
+// container stores them.
+void add_dark_gains(CompressedField& field);
+
 }  // namespace relume::testing

@@ -47,13 +47,14 @@ void add_method_options(CLI::App& command, CompressArguments& arguments) {
                   "at most 4N). Example: --residual 12 --residual-allocation peak")
       ->check(CLI::IsMember({"per-function", "peak"}));
   command.add_option("--noise-floor", options.noise_floor,
-                     "Field units: pixels whose every channel has an RMS over the lights at "
-                     "or below X share one dark model (no stored rows); default: the input's "
-                     "quantization step, 1/255 for 8-bit images (divided by the mean light "
-                     "intensity), 0 for float images");
+                     "Field units: a pixel whose every channel is, within X (RMS over the "
+                     "lights), a multiple of the dark shape (the mean of the darkest pixels) "
+                     "has no stored rows and relights as that multiple; 0 stores every pixel. "
+                     "Default: 3 x the camera noise estimated from the images themselves "
+                     "(reported in the summary and the report). Example: --noise-floor 0");
   command.add_option("--threshold", options.threshold,
                      "Drop residual entries with |value| <= X, in field units (default: the "
-                     "noise floor)");
+                     "estimated noise deviation, or the noise floor when given)");
   command.add_option("--transform", options.transform,
                      "Basis of the factorization: identity (default) or haar (orthonormal Haar "
                      "wavelet over the light order; the residual is sparse in that basis)");
