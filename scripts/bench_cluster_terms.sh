@@ -24,7 +24,7 @@ mkdir -p "$out"
 
 # scene|input|options|residual entries (the run with one fewer drops to residual - 1)
 scenes=(
-  "ball8 whole frame|$out/ball8_nomask|--linear --noise-floor 0.03 --clusters 64 --terms 4|3"
+  "ball8 whole frame|$out/ball8_nomask|--linear --clusters 64 --terms 4|3"
   "bear crop|$data/olat/diligent-bear-crop8|--clusters 16 --terms 4|6"
   "synthetic 320x320|$out/synth|--clusters 64 --terms 8|7"
 )

@@ -32,7 +32,7 @@ mkdir -p "$out"
 # scene|input|options every point of the scene gets|options reading the field
 scenes=(
   "ball8 mask|$out/ball8|--linear|--linear"
-  "ball8 whole frame|$out/ball8_nomask|--linear --noise-floor 0.03 --psnr-mask $ball/mask.png|--linear"
+  "ball8 whole frame|$out/ball8_nomask|--linear --psnr-mask $ball/mask.png|--linear"
   "pot1 mask|$pot||"
   "ball 16-bit mask|$ball||"
   "harvest mask|$harvest||"
