@@ -101,7 +101,7 @@ class CompressOptions:
     weights_precision: str = "quantized"
     residual_precision: str = "quantized"
     bases_precision: str = "quantized"
-    quantization_budget: float = 0.01
+    quantization_budget: float = -1.0
     term_budget: float = -1.0
     target_error: float = 0.0
     target_bytes: int = 0
@@ -135,6 +135,10 @@ class Compressed:
     def clusters(self) -> int: ...
     @property
     def stored_rows(self) -> int: ...
+    @property
+    def non_negative(self) -> bool:
+        """The compressed field had no negative value: relit under non-negative lights, images are
+        projected onto >= 0."""
     @property
     def transform(self) -> str: ...
     @property
@@ -260,7 +264,7 @@ def compress(
     weights_precision: str = "quantized",
     residual_precision: str = "quantized",
     bases_precision: str = "quantized",
-    quantization_budget: float = 0.01,
+    quantization_budget: float = -1.0,
     term_budget: float = -1.0,
     target_error: float = 0.0,
     target_bytes: int = 0,
@@ -311,7 +315,7 @@ def compress_file(
     weights_precision: str = "quantized",
     residual_precision: str = "quantized",
     bases_precision: str = "quantized",
-    quantization_budget: float = 0.01,
+    quantization_budget: float = -1.0,
     term_budget: float = -1.0,
     target_error: float = 0.0,
     target_bytes: int = 0,

@@ -80,7 +80,9 @@ struct CompressOptions {
   std::string weights_precision = "quantized";
   std::string residual_precision = "quantized";
   std::string bases_precision = "quantized";
-  double quantization_budget = 0.01;  // what quantization may add to the Eq. 16 error, relative
+  // What quantization may add to the squared error of the stored functions, relative. Negative:
+  // 0.01 (1%, 0.04 dB), and a rate target tries 0.01, 0.1 and 1 and keeps the best.
+  double quantization_budget = -1;
   // With quantized storage: what dropping the basis terms that clusters of dim or simple
   // functions do not need may add to the Eq. 16 error, relative. Negative: 0 (every cluster keeps
   // all terms), and a rate target tries 0 and 0.1 and keeps the better.

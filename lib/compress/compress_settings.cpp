@@ -52,7 +52,8 @@ StoragePrecision storage_precision(const CompressOptions& options) {
   precision.weights = parse_value_precision(options.weights_precision);
   precision.residual = parse_value_precision(options.residual_precision);
   precision.quantize_bases = options.bases_precision == "quantized";
-  precision.budget = options.quantization_budget;
+  precision.budget = options.quantization_budget < 0 ? default_quantization_budget
+                                                    : options.quantization_budget;
   precision.term_budget = options.term_budget < 0 ? 0.0 : options.term_budget;
   precision.threads = options.threads;
   precision.quantization_budget();  // throws Error for a bad budget before any work

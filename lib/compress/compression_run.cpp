@@ -87,8 +87,17 @@ RateTarget rate_target(const CompressOptions& asked, const std::string& solver,
     target.bytes = std::uint64_t(std::floor(asked.target_bytes_per_pixel * double(field.pixels())));
   target.psnr = asked.target_psnr;
   target.psnr_white = asked.psnr_white;
-  target.term_budgets = asked.term_budget >= 0 ? std::vector<double>{asked.term_budget}
+  // Unless given, the term budgets 0 and 0.1 and the quantization budgets 1%, 10% and 100%.
+  const std::vector<double> term_budgets = asked.term_budget >= 0
+                                               ? std::vector<double>{asked.term_budget}
                                                : std::vector<double>{0.0, 0.1};
+  const std::vector<double> quantization_budgets =
+      asked.quantization_budget > 0 ? std::vector<double>{asked.quantization_budget}
+                                    : std::vector<double>{default_quantization_budget, 0.1, 1.0};
+  target.stored_as.clear();
+  for (const double term_budget : term_budgets)
+    for (const double quantization_budget : quantization_budgets)
+      target.stored_as.push_back({term_budget, quantization_budget});
   // The whole frame, or the mask: psnr_mask's, else the field's (an empty region).
   target.region = asked.target_region == "frame"
                       ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1)

@@ -98,12 +98,14 @@ Candidate cut_and_store(const ReflectanceField& original, const CompressedField&
                         const std::vector<double>& energy, double target_error,
                         const QuantizationBudget* quantization) {
   Candidate candidate;
-  double aim = quantization ? target_error / (1 + quantization->relative_increase) : target_error;
+  std::optional<QuantizationBudget> budget;  // held on Eq. 16, the target's measure
+  if (quantization) budget = *quantization, budget->eq16 = true;
+  double aim = budget ? target_error / (1 + budget->relative_increase) : target_error;
   for (int round = 0; round < 4; ++round) {
     candidate.field = full;
     candidate.reached = cut_residual_to_error(candidate.field, energy, aim);
-    if (!quantization) return candidate;
-    candidate.quantization = quantize_with_budget(original, candidate.field, *quantization);
+    if (!budget) return candidate;
+    candidate.quantization = quantize_with_budget(original, candidate.field, *budget);
     candidate.reached = relative_error(original, candidate.field, true).mean;
     if (candidate.reached <= target_error) break;
     aim *= target_error / candidate.reached;  // quantization added more than its share: aim lower

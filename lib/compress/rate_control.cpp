@@ -18,14 +18,14 @@ struct RatePoint {
   std::size_t entries = 0;  // residual entries kept, the best first
   std::uint64_t bytes = 0;
   double error = 0;  // Eq. 16 over the masked functions
-  double psnr = 0;   // inside the region; measured for PSNR targets only
+  double psnr = 0;   // 8-bit, inside the region
 };
 
-nlohmann::ordered_json to_json(const RatePoint& point, bool psnr) {
-  nlohmann::ordered_json out = {
-      {"residual_entries", point.entries}, {"bytes", point.bytes}, {"error_masked", point.error}};
-  if (psnr) out["psnr_8bit"] = point.psnr;
-  return out;
+nlohmann::ordered_json to_json(const RatePoint& point) {
+  return {{"residual_entries", point.entries},
+          {"bytes", point.bytes},
+          {"error_masked", point.error},
+          {"psnr_8bit", point.psnr}};
 }
 
 // One candidate's residual cut to any number of its best entries, measured as stored.
@@ -62,10 +62,9 @@ class RateCurve {
     point.entries = field.residual.nonzeros();
     point.bytes = plan_container(field, container_).file_bytes;
     point.error = relative_error(original_, field, true, all_residual_entries, threads_).mean;
-    if (target_.psnr > 0)
-      point.psnr = psnr_8bit(original_, field, target_.psnr_white, all_residual_entries, threads_,
-                             target_.region)
-                       .masked;
+    point.psnr = psnr_8bit(original_, field, target_.psnr_white, all_residual_entries, threads_,
+                           target_.region)
+                     .masked;
     points_.push_back(point);
     measured_.emplace(entries, point);
     return point;
@@ -136,7 +135,7 @@ std::string region_text(const std::vector<std::uint8_t>& region) {
 bool better(const CurveChoice& a, const CurveChoice& b, const RateTarget& target) {
   if (a.met != b.met) return a.met;
   if (target.bytes > 0)
-    return a.met ? a.point.error < b.point.error : a.point.bytes < b.point.bytes;
+    return a.met ? a.point.psnr > b.point.psnr : a.point.bytes < b.point.bytes;
   return a.met ? a.point.bytes < b.point.bytes : a.point.psnr > b.point.psnr;
 }
 
@@ -158,30 +157,28 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   const unsigned threads = options.clustering.threads;
   TargetSearch best;
   std::optional<CurveChoice> best_choice;
-  double best_term_budget = 0;
+  StoredAs best_stored_as;
   nlohmann::ordered_json tried = nlohmann::ordered_json::array();
-  const std::vector<double> term_budgets =
-      quantization ? target.term_budgets : std::vector<double>{0.0};  // float storage: unused
-  if (term_budgets.empty()) throw Error("a rate target needs at least one term budget");
+  const std::vector<StoredAs> ways =
+      quantization ? target.stored_as : std::vector<StoredAs>{StoredAs{}};  // float: unused
+  if (ways.empty()) throw Error("a rate target needs at least one way to store");
   for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
-    for (const double term_budget : term_budgets) {
+    for (const StoredAs& way : ways) {
       CompressedField stored = grid.full;
       std::optional<QuantizationChoice> quantized;
       if (quantization) {
         QuantizationBudget budget = *quantization;
-        budget.term_increase = term_budget;
+        budget.term_increase = way.term_budget;
+        budget.relative_increase = way.quantization_budget;
         quantized = quantize_with_budget(field, stored, budget);
       }
-      // The weight of each stored row's entries in the ranking.
+      // The weight of each stored row's entries in the ranking: inside the region or not.
       std::vector<double> row_weight(stored.stored_rows(), 1.0);
-      for (std::size_t r = 0; r < row_weight.size(); ++r) {
-        if (target.bytes > 0) {
-          row_weight[r] = 1.0 / grid.energy[r];
-        } else if (!target.region.empty()) {
+      if (!target.region.empty())
+        for (std::size_t r = 0; r < row_weight.size(); ++r) {
           const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
           row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
         }
-      }
       ContainerOptions planned = container;
       if (target.parameters_json)
         planned.parameters_json = target.parameters_json(grid.options, grid.stats);
@@ -190,26 +187,28 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
           target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
       nlohmann::ordered_json points = nlohmann::ordered_json::array();
       for (const RatePoint& point : curve.points())
-        points.push_back(to_json(point, target.psnr > 0));
+        points.push_back(to_json(point));
       tried.push_back({{"terms", grid.options.clustering.terms},
                        {"clusters", stored.clusters},
-                       {"term_budget", term_budget},
+                       {"term_budget", way.term_budget},
+                       {"quantization_budget", way.quantization_budget},
                        {"met", choice.met},
-                       {"choice", to_json(choice.point, target.psnr > 0)},
+                       {"choice", to_json(choice.point)},
                        {"points", points}});
       if (!options.clustering.quiet)
         std::fprintf(
-            stderr, "compress: rate target: %d terms, %d clusters -> %llu bytes, error %.5f%s%s\n",
-            grid.options.clustering.terms, stored.clusters,
-            static_cast<unsigned long long>(choice.point.bytes), choice.point.error,
-            target.psnr > 0 ? (", " + std::to_string(choice.point.psnr) + " dB").c_str() : "",
-            choice.met ? "" : " (target not met)");
+            stderr,
+            "compress: rate target: %d terms, %d clusters, term budget %g, quantization budget "
+            "%g -> %llu bytes, %.2f dB, error %.5f%s\n",
+            grid.options.clustering.terms, stored.clusters, way.term_budget,
+            way.quantization_budget, static_cast<unsigned long long>(choice.point.bytes),
+            choice.point.psnr, choice.point.error, choice.met ? "" : " (target not met)");
       if (!best_choice || better(choice, *best_choice, target)) {
         best_choice = choice;
         best.field = curve.at(choice.point.entries);
         best.quantization = quantized;
         best.options = grid.options;
-        best_term_budget = term_budget;
+        best_stored_as = way;
         stats = grid.stats;
         stats.residual_nonzeros = best.field.residual.nonzeros();
       }
@@ -217,7 +216,9 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   });
   nlohmann::ordered_json goal;
   if (target.bytes > 0)
-    goal = {{"bytes", target.bytes}};
+    goal = {{"bytes", target.bytes},
+            {"best_psnr_over", region_text(target.region)},
+            {"white", target.psnr_white}};
   else
     goal = {{"psnr_8bit", target.psnr},
             {"white", target.psnr_white},
@@ -226,21 +227,22 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       {"target", goal},
       {"method",
        target.bytes > 0
-           ? "each (terms, clusters) pair factored once with its full residual and stored as "
-             "asked; the residual entries ranked by e^2/||R[p,:]||^2 and the most kept whose "
-             "container fits (bisection); of the pairs that fit, the lowest Eq. 16 error wins"
-           : "each (terms, clusters) pair factored once with its full residual and stored as "
-             "asked; the residual entries inside the region ranked by e^2 and the fewest kept "
-             "whose 8-bit PSNR reaches the target (bisection); of the pairs that reach it, the "
-             "smallest container wins"},
+           ? "each (terms, clusters) pair factored once with its full residual and stored in "
+             "each way tried (term and quantization budgets); the residual entries inside the "
+             "region ranked by e^2 and the most kept whose container fits (bisection); of those "
+             "that fit, the highest 8-bit PSNR over the region wins"
+           : "each (terms, clusters) pair factored once with its full residual and stored in "
+             "each way tried (term and quantization budgets); the residual entries inside the "
+             "region ranked by e^2 and the fewest kept whose 8-bit PSNR reaches the target "
+             "(bisection); of those that reach it, the smallest container wins"},
       {"met", best_choice && best_choice->met},
       {"tried", tried},
       {"chosen",
        {{"terms", best.options.clustering.terms},
         {"clusters", best.field.clusters},
-        {"term_budget", best_term_budget},
-        {"point",
-         best_choice ? to_json(best_choice->point, target.psnr > 0) : nlohmann::ordered_json()}}}};
+        {"term_budget", best_stored_as.term_budget},
+        {"quantization_budget", best_stored_as.quantization_budget},
+        {"point", best_choice ? to_json(best_choice->point) : nlohmann::ordered_json()}}}};
   return best;
 }
 

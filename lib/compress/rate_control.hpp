@@ -1,13 +1,12 @@
 // `relume compress --target-bytes N | --target-bytes-per-pixel B | --target-psnr DB`: rate
 // control over the grid of --target-error (compression_target.hpp). Each (terms, clusters) pair
 // is factored once with its full residual and stored with the asked precision (quantized within
-// the budget by default). Its residual entries are ranked by the error each removes (Eq. 16's
-// e^2 / ||R[p,:]||^2 for a byte target; e^2 inside the PSNR region for a PSNR target), and the
+// the budget by default), in each of the target's ways (term and quantization budgets). Its
+// residual entries are ranked by the squared error each removes inside the PSNR region, and the
 // number kept is found by bisection: the most entries whose container fits the bytes, or the
-// fewest whose 8-bit PSNR reaches the target; with several term budgets, each pair is stored and
-// measured with each. Of the pairs that meet the target, the lowest
-// error (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the
-// explanation says so. Every rate-distortion point tried is in the explanation.
+// fewest whose 8-bit PSNR reaches the target. Of the ways that meet the target, the highest PSNR
+// (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the explanation says
+// so. Every rate-distortion point tried is in the explanation.
 #pragma once
 
 #include <cstdint>
@@ -19,15 +18,22 @@
 
 namespace relume {
 
+// One way to store a candidate: its term budget (QuantizationBudget::term_increase,
+// model/cluster_terms.hpp) and quantization budget (relative_increase, model/quantization.hpp).
+// Coarser quantization is the first way to a lower rate, as in every image codec.
+struct StoredAs {
+  double term_budget = 0;
+  double quantization_budget = QuantizationBudget{}.relative_increase;
+};
+
 struct RateTarget {
   std::uint64_t bytes = 0;  // > 0: the container may have at most this many bytes
   double psnr = 0;          // > 0: the 8-bit PSNR in dB (model/field_psnr.hpp) to reach
   double psnr_white = 1.0;  // the field value that is 255 for the PSNR
   // width * height, non-zero where the PSNR is measured; empty: the field's mask.
   std::vector<std::uint8_t> region;
-  // With quantized storage, each candidate is stored with each of these term budgets
-  // (QuantizationBudget::term_increase, model/cluster_terms.hpp) and the best of them counts.
-  std::vector<double> term_budgets{0.0};
+  // With quantized storage, each candidate is stored in each of these ways and the best counts.
+  std::vector<StoredAs> stored_as{StoredAs{}};
   // The parameter record the caller's container will carry (ContainerOptions::parameters_json)
   // for a candidate's options and statistics, so that the bytes measured are the file's.
   std::function<std::string(const CompressionOptions&, const CompressionStats&)> parameters_json;

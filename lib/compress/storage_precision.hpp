@@ -20,7 +20,7 @@ struct StoragePrecision {
   ValuePrecision weights = ValuePrecision::quantized;
   ValuePrecision residual = ValuePrecision::quantized;
   bool quantize_bases = true;
-  double budget = QuantizationBudget{}.relative_increase;   // of the Eq. 16 error
+  double budget = QuantizationBudget{}.relative_increase;   // of the squared error
   double term_budget = QuantizationBudget{}.term_increase;  // 0: every cluster keeps all terms
   unsigned threads = 0;
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <relume/error.hpp>
 #include <vector>
 
@@ -68,30 +69,37 @@ std::vector<std::size_t> sample_rows(std::size_t rows, std::size_t count) {
   return sample;
 }
 
-// Eq. 16 over the sampled stored rows (zero-energy functions left out).
+// The squared error over the sampled stored rows relative to their energy: the measure PSNR
+// takes, where a function's share is its squared error, not (as in Eq. 16) its error relative to
+// its own norm, which would let the faintest, noisiest functions choose the steps. With `eq16`,
+// Eq. 16 over the sample (zero-energy functions left out).
 double sampled_error(const ReflectanceField& original, const CompressedField& field,
-                     const std::vector<std::size_t>& rows, unsigned threads) {
+                     const std::vector<std::size_t>& rows, bool eq16, unsigned threads) {
   const unsigned workers = resolve_thread_count(threads);
   std::vector<std::vector<double>> sums(workers, std::vector<double>(field.lights));
   std::vector<std::vector<float>> approx(workers, std::vector<float>(field.lights));
-  std::vector<double> error(rows.size(), -1);
+  std::vector<double> energy(rows.size()), difference(rows.size());
   parallel_for(rows.size(), threads, [&](std::size_t s, unsigned worker) {
     const std::size_t r = rows[s];
     reconstruct_function(field, std::int64_t(r), all_residual_entries, sums[worker].data(),
                          approx[worker].data());
     const float* exact = original.values.row(Eigen::Index(field.stored_function[r])).data();
-    double energy = 0, difference = 0;
     for (int i = 0; i < field.lights; ++i) {
-      energy += double(exact[i]) * exact[i];
-      difference += std::pow(double(exact[i]) - approx[worker][i], 2);
+      energy[s] += double(exact[i]) * exact[i];
+      difference[s] += std::pow(double(exact[i]) - approx[worker][i], 2);
     }
-    if (energy > 0) error[s] = difference / energy;
   });
-  double total = 0;
-  std::size_t counted = 0;
-  for (double e : error)
-    if (e >= 0) total += e, ++counted;
-  return counted ? total / double(counted) : 0.0;
+  if (eq16) {
+    double total = 0;
+    std::size_t counted = 0;
+    for (std::size_t s = 0; s < rows.size(); ++s)
+      if (energy[s] > 0) total += difference[s] / energy[s], ++counted;
+    return counted ? total / double(counted) : 0.0;
+  }
+  const double total_energy = std::accumulate(energy.begin(), energy.end(), 0.0);
+  return total_energy > 0
+             ? std::accumulate(difference.begin(), difference.end(), 0.0) / total_energy
+             : 0.0;
 }
 
 // The field restricted to `rows` (for measuring a sample quickly).
@@ -162,10 +170,11 @@ QuantizationChoice choose_quantization(const ReflectanceField& original,
   std::vector<std::size_t> all(rows.size());
   for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
   QuantizationChoice choice;
-  choice.error_unquantized = sampled_error(original, sample, all, budget.threads);
+  choice.error_unquantized = sampled_error(original, sample, all, budget.eq16, budget.threads);
   const double allowed = choice.error_unquantized * budget.relative_increase;
   auto increase = [&](const QuantizationSteps& steps) {
-    return sampled_error(original, quantize_values(sample, steps), all, budget.threads) -
+    return sampled_error(original, quantize_values(sample, steps), all, budget.eq16,
+                         budget.threads) -
            choice.error_unquantized;
   };
 

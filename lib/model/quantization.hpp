@@ -2,8 +2,10 @@
 // the residual values as integers times one step each, every basis row as integers of a few bits
 // times its own scale. Best after align_cluster_bases (model/basis_alignment.hpp), where one
 // weight step means the same absolute error everywhere. The steps come from an error budget: the
-// largest that keep the paper's Eq. 16 error within (1 + budget) of the unquantized field's,
-// measured on a sample of the stored rows against the original field.
+// largest that keep the squared error of a sample of the stored rows against the original field
+// within (1 + budget) of the unquantized field's. The squared error, not Eq. 16's mean of each
+// function's error relative to its own norm: there the faintest functions, all sensor noise,
+// would set the steps for the rows that carry the image.
 #pragma once
 
 #include <cstddef>
@@ -28,8 +30,17 @@ struct QuantizationSteps {
 // Takes the field by value: pass it with std::move to quantize it without a copy.
 CompressedField quantize_values(CompressedField field, const QuantizationSteps& steps);
 
+// What quantization may add to the squared error of the stored rows, relative, by default: 1%,
+// 0.04 dB of PSNR.
+inline constexpr double default_quantization_budget = 0.01;
+
 struct QuantizationBudget {
-  double relative_increase = 0.01;  // of the Eq. 16 error over the stored rows
+  // Of the squared error over the stored rows (sum over a sample of rows of ||R - R~||^2, relative
+  // to their energy: what PSNR measures)
+  double relative_increase = default_quantization_budget;
+  // Hold the budget on Eq. 16 (the mean of each function's error relative to its own norm)
+  // instead: for a target given in Eq. 16 (--target-error).
+  bool eq16 = false;
   // The parts to quantize; the others keep float values.
   bool weights = true, residual = true, bases = true;
   // What dropping the terms each cluster does not need may add to the Eq. 16 error, relative,

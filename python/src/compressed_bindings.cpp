@@ -93,6 +93,8 @@ memory; a view keeps it alive.)");
       .def_property_readonly("clusters", [](const CompressedObject& c) { return c.field.clusters; })
       .def_property_readonly("stored_rows",
                              [](const CompressedObject& c) { return c.field.stored_rows(); })
+      .def_property_readonly("non_negative",
+                             [](const CompressedObject& c) { return c.field.non_negative; })
       .def_property_readonly(
           "transform",
           [](const CompressedObject& c) {

@@ -27,7 +27,8 @@ def saved(compressed, tmp_path_factory):
 
 
 def numpy_relight(compressed, light, cap=None):
-    """out[p] = W[s] . (F^k I[:, c]) + sum of the first `cap` residual entries E[s, e] I[e, c]."""
+    """out[p] = W[s] . (F^k I[:, c]) + sum of the first `cap` residual entries E[s, e] I[e, c],
+    projected onto >= 0 for a non-negative field under a non-negative light."""
     out = np.zeros(compressed.height * compressed.width * compressed.channels)
     offsets = compressed.residual_offsets
     for s, p in enumerate(compressed.stored_function):
@@ -38,6 +39,8 @@ def numpy_relight(compressed, light, cap=None):
         entries = slice(offsets[s], end)
         value += compressed.residual_values[entries] @ light[compressed.residual_indices[entries], c]
         out[p] = value
+    if compressed.non_negative and (light >= 0).all():
+        out = np.maximum(out, 0)
     return out.reshape(compressed.height, compressed.width, compressed.channels)
 
 

@@ -11,6 +11,7 @@
 #include <relume/error.hpp>
 #include <relume/field.hpp>
 #include <set>
+#include <utility>
 
 #include "compress/checkpoint.hpp"
 #include "compress/clustered_factorization.hpp"
@@ -247,9 +248,9 @@ TEST(CompressCommand, TargetErrorReachesTheTargetWithTheSmallestContainerTried) 
   EXPECT_GT(relative_error(field, compressed, true, 0).mean, target);
 }
 
-// --target-bytes: the file fits, the chosen pair has the lowest error of the pairs that fit, and a
-// smaller budget keeps fewer residual entries at a higher error.
-TEST(CompressCommand, TargetBytesFitsWithTheLowestErrorOfThePairsTried) {
+// --target-bytes: the file fits, the chosen way has the highest PSNR (over the frame) of the ways
+// that fit, and a smaller budget keeps fewer residual entries at a lower PSNR.
+TEST(CompressCommand, TargetBytesFitsWithTheHighestPsnrOfTheWaysTried) {
   testing::TempDir dir;
   write_field_folder(dir / "field", small_field(5));
   const auto compress = [&](const std::string& name, const std::string& target) {
@@ -272,25 +273,37 @@ TEST(CompressCommand, TargetBytesFitsWithTheLowestErrorOfThePairsTried) {
   const nlohmann::json& choice = tight["rate_target"];
   EXPECT_TRUE(choice["met"].get<bool>());
   EXPECT_LE(std::filesystem::file_size(dir / "tight.relume"), budget);
-  EXPECT_GT(tight["error_masked"].get<double>(), roomy["error_masked"].get<double>());
+  const auto frame_psnr = [](const nlohmann::json& report) {
+    return report["psnr_8bit"]["whole_frame"].get<double>();
+  };
+  EXPECT_LT(frame_psnr(tight), frame_psnr(roomy));
   EXPECT_LT(tight["residual_nonzeros"].get<std::uint64_t>(),
             roomy["residual_nonzeros"].get<std::uint64_t>());
   const CompressedField stored = read_container(dir / "tight.relume");
-  const double chosen_error = choice["chosen"]["point"]["error_masked"].get<double>();
-  EXPECT_NEAR(relative_error(small_field(5), stored, true).mean, chosen_error, 1e-9);
+  const nlohmann::json& chosen = choice["chosen"]["point"];
+  EXPECT_NEAR(relative_error(small_field(5), stored, true).mean,
+              chosen["error_masked"].get<double>(), 1e-9);
+  const double chosen_psnr = chosen["psnr_8bit"].get<double>();
+  EXPECT_NEAR(frame_psnr(tight), chosen_psnr, 1e-9);
   for (const auto& tried : choice["tried"])
     if (tried["met"].get<bool>()) {
       EXPECT_LE(tried["choice"]["bytes"].get<std::uint64_t>(), budget);
-      EXPECT_GE(tried["choice"]["error_masked"].get<double>(), chosen_error);
+      EXPECT_LE(tried["choice"]["psnr_8bit"].get<double>(), chosen_psnr);
     }
-  // Without --term-budget every pair is stored with term budgets 0 and 0.1; with it, only so.
-  std::set<double> term_budgets;
-  for (const auto& tried : choice["tried"]) term_budgets.insert(tried["term_budget"].get<double>());
-  EXPECT_EQ(term_budgets, (std::set<double>{0.0, 0.1}));
+  // Without --term-budget and --quantization-budget every pair is stored with term budgets 0 and
+  // 0.1, each with quantization budgets 0.01, 0.1 and 1; with them, only so.
+  std::set<std::pair<double, double>> ways;
+  for (const auto& tried : choice["tried"])
+    ways.insert({tried["term_budget"].get<double>(), tried["quantization_budget"].get<double>()});
+  EXPECT_EQ(ways, (std::set<std::pair<double, double>>{
+                      {0.0, 0.01}, {0.0, 0.1}, {0.0, 1.0}, {0.1, 0.01}, {0.1, 0.1}, {0.1, 1.0}}));
   const nlohmann::json given =
-      compress("given", "--target-bytes " + std::to_string(budget) + " --term-budget 0.05");
-  for (const auto& tried : given["rate_target"]["tried"])
+      compress("given", "--target-bytes " + std::to_string(budget) +
+                            " --term-budget 0.05 --quantization-budget 0.2");
+  for (const auto& tried : given["rate_target"]["tried"]) {
     EXPECT_EQ(tried["term_budget"].get<double>(), 0.05);
+    EXPECT_EQ(tried["quantization_budget"].get<double>(), 0.2);
+  }
 }
 
 // --target-psnr: the PSNR of the file as written reaches the target with the fewest bytes of the

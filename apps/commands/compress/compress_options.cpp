@@ -123,9 +123,10 @@ void add_storage_options(CLI::App& command, CompressOptions& options) {
                      "scale per basis function) or float32");
   command
       .add_option("--quantization-budget", options.quantization_budget,
-                  "How much quantization may add to the error (paper Eq. 16) over the "
-                  "stored functions, relative (0.01: 1%)")
-      ->capture_default_str();
+                  "How much quantization may add to the squared error of the stored "
+                  "functions, relative (0.01: 1%, 0.04 dB). Default 0.01; a rate target "
+                  "(--target-bytes, --target-psnr) tries 0.01, 0.1 and 1 and keeps the best: "
+                  "coarser steps are the first way to fewer bytes");
   command.add_option(
       "--term-budget", options.term_budget,
       "With quantized storage, how much dropping the basis terms that clusters of dim or "
