@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "image/luminance.hpp"
+
 namespace relume {
 
 AutoExposure auto_exposure(const Image& image, const std::vector<std::uint8_t>& mask) {
@@ -11,10 +13,8 @@ AutoExposure auto_exposure(const Image& image, const std::vector<std::uint8_t>& 
   const std::size_t pixels = std::size_t(image.width) * image.height;
   for (std::size_t p = 0; p < pixels; ++p) {
     if (!mask.empty() && !mask[p]) continue;
-    const float* v = &image.pixels[p * image.channels];
-    const float luminance =
-        image.channels >= 3 ? 0.2126f * v[0] + 0.7152f * v[1] + 0.0722f * v[2] : v[0];
-    if (luminance > 0) lit.push_back(luminance);
+    const float value = luminance(&image.pixels[p * image.channels], image.channels);
+    if (value > 0) lit.push_back(value);
   }
   AutoExposure result;
   result.lit_pixels = lit.size();
@@ -22,6 +22,7 @@ AutoExposure auto_exposure(const Image& image, const std::vector<std::uint8_t>& 
   const auto at = lit.begin() + static_cast<std::ptrdiff_t>(0.99 * double(lit.size() - 1));
   std::nth_element(lit.begin(), at, lit.end());
   result.percentile = *at;
+  result.white = result.percentile / 0.9;
   result.stops = std::log2(0.9 / result.percentile);
   return result;
 }

@@ -14,10 +14,11 @@ namespace relume {
 struct AutoExposure {
   double stops = 0;       // the exposure; 0 when nothing is lit
   double percentile = 0;  // the luminance that maps to 0.9
+  double white = 0;       // the luminance that maps to 1 (percentile / 0.9); 0 when nothing is lit
   std::size_t lit_pixels = 0;
 };
 
-// Luminance: Rec. 709 weights of the first three channels (a grey image: its one channel).
+// Luminance: image/luminance.hpp.
 // `mask`: width * height entries, 1 = part of the object; empty = the whole image.
 AutoExposure auto_exposure(const Image& image, const std::vector<std::uint8_t>& mask);
 

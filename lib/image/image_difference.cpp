@@ -13,9 +13,8 @@ double peak_signal_to_noise_db(const ImageDifference& difference) {
   return -10.0 * std::log10(difference.mean_squared_difference);
 }
 
-ImageDifference image_difference(const Image& image, const Image& reference,
-                                 const std::string& image_label, const std::string& reference_label,
-                                 const std::vector<std::uint8_t>& mask) {
+void check_comparable(const Image& image, const Image& reference, const std::string& image_label,
+                      const std::string& reference_label, const std::vector<std::uint8_t>& mask) {
   if (image.width != reference.width || image.height != reference.height ||
       image.channels != reference.channels)
     throw Error(image_label + " is " + std::to_string(image.width) + "x" +
@@ -25,6 +24,12 @@ ImageDifference image_difference(const Image& image, const Image& reference,
   if (!mask.empty() && mask.size() != std::size_t(image.width) * image.height)
     throw Error("the mask has " + std::to_string(mask.size()) + " pixels but " + image_label +
                 " has " + std::to_string(std::size_t(image.width) * image.height));
+}
+
+ImageDifference image_difference(const Image& image, const Image& reference,
+                                 const std::string& image_label, const std::string& reference_label,
+                                 const std::vector<std::uint8_t>& mask) {
+  check_comparable(image, reference, image_label, reference_label, mask);
   const auto inside = [&](std::size_t i) { return mask.empty() || mask[i / image.channels]; };
   double reference_peak = 0;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -73,9 +78,7 @@ ImageDifference image_difference(const Image& image, const Image& reference,
 }
 
 Image scaled_difference(const Image& image, const Image& reference, float scale) {
-  if (image.width != reference.width || image.height != reference.height ||
-      image.channels != reference.channels)
-    throw Error("images of different sizes cannot be differenced");
+  check_comparable(image, reference, "image", "reference", {});
   Image out(image.width, image.height, image.channels);
   for (std::size_t v = 0; v < out.pixels.size(); ++v)
     out.pixels[v] = std::fabs(image.pixels[v] - reference.pixels[v]) * scale;

@@ -36,16 +36,21 @@ inline constexpr double relative_difference_floor = 0.01;
 // 10 log10(1 / mean squared difference); +infinity for identical images.
 double peak_signal_to_noise_db(const ImageDifference& difference);
 
-// `mask`: width * height entries, 1 = compared; empty compares every pixel. Throws Error naming
-// both labels when the images differ in size or channels, when either holds NaN or Inf, or when
-// the mask's size is not the images'.
+// Throws Error naming both labels when the images differ in size or channels, or naming the image
+// when `mask` (width * height entries, or empty) does not fit it: the check of every comparison
+// of two images (this one, the luminance SSIM, the lit pixel faults, the seam contrast).
+void check_comparable(const Image& image, const Image& reference, const std::string& image_label,
+                      const std::string& reference_label, const std::vector<std::uint8_t>& mask);
+
+// `mask`: width * height entries, 1 = compared; empty compares every pixel. Throws Error as
+// check_comparable does, and when either image holds NaN or Inf.
 ImageDifference image_difference(const Image& image, const Image& reference,
                                  const std::string& image_label = "image",
                                  const std::string& reference_label = "reference",
                                  const std::vector<std::uint8_t>& mask = {});
 
-// |image - reference| x scale, per value: a difference image to look at. Throws Error when the
-// images differ in size or channels.
+// |image - reference| x scale, per value: a difference image to look at. Throws Error as
+// check_comparable does.
 Image scaled_difference(const Image& image, const Image& reference, float scale);
 
 }  // namespace relume
