@@ -13,7 +13,7 @@ void add_image_output_options(CLI::App& command, ImageOutputOptions& options) {
                   "Exposure in stops for integer outputs (PNG, JPEG, TIFF with --bits), or auto: "
                   "the 99th percentile of the lit object's luminance maps to 0.9")
       ->capture_default_str()
-      ->check(number_or_auto("--exposure", "stops"));
+      ->check(number_or_auto("--exposure", "stops", max_exposure_stops));
   command
       .add_option("--bits", options.bits,
                   "Bits per channel of integer outputs: 8 or 16 for PNG and TIFF (a TIFF without "
@@ -30,7 +30,7 @@ void check_image_output(const std::filesystem::path& path, const ImageOutputOpti
 double display_exposure(const ImageOutputOptions& options, const Image& image,
                         const std::vector<std::uint8_t>& mask) {
   if (options.exposure != "auto")
-    return parse_finite_number(options.exposure, "--exposure", "stops");
+    return parse_finite_number(options.exposure, "--exposure", "stops", max_exposure_stops);
   const AutoExposure automatic = auto_exposure(image, mask);
   if (automatic.lit_pixels == 0)
     note("--exposure auto: nothing is lit, exposure 0");

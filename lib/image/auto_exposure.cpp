@@ -22,7 +22,9 @@ AutoExposure auto_exposure(const Image& image, const std::vector<std::uint8_t>& 
   const auto at = lit.begin() + static_cast<std::ptrdiff_t>(0.99 * double(lit.size() - 1));
   std::nth_element(lit.begin(), at, lit.end());
   result.percentile = *at;
-  result.stops = std::log2(0.9 / result.percentile);
+  // Within what write_image accepts: a percentile of 1e-30 or of Inf asks for more than 40 stops.
+  result.stops =
+      std::clamp(std::log2(0.9 / result.percentile), -max_exposure_stops, max_exposure_stops);
   return result;
 }
 

@@ -10,6 +10,8 @@
 #include <relume/lighting.hpp>
 #include <string>
 
+#include "core/text_numbers.hpp"
+
 namespace relume {
 namespace {
 
@@ -158,10 +160,10 @@ Eigen::VectorXd LightInterpolation::weights(const Eigen::Vector3d& direction,
 }
 
 LightRgb LightInterpolation::light_vector(const DirectionalLight& light) const {
-  if (!light.rgb.allFinite() || (light.rgb.array() < 0).any())
-    throw Error("light colour (" + std::to_string(light.rgb.x()) + ", " +
-                std::to_string(light.rgb.y()) + ", " + std::to_string(light.rgb.z()) +
-                ") must be three finite non-negative numbers");
+  if (!(light.rgb.array() >= 0 && light.rgb.array() <= max_light_color).all())
+    throw Error("light colour (" + number_text(light.rgb.x()) + ", " + number_text(light.rgb.y()) +
+                ", " + number_text(light.rgb.z()) + ") must be three non-negative numbers up to " +
+                number_text(max_light_color));
   const Eigen::VectorXd w = weights(light.direction, light.spread_degrees);
   LightRgb rgb(lights_, 3);
   for (int i = 0; i < lights_; ++i) rgb.row(i) = (w[i] * light.rgb).transpose().cast<float>();

@@ -2,7 +2,8 @@
 NumPy evaluation of R ~ W F + E needs; relighting (CPU reference and OpenCL, whole and batched,
 with a residual cap, under a light moved by light_dir=) equals `relume relight` and that
 evaluation; reconstruct equals `relume decompress`; export_npz writes what `relume export` does;
-save and open round-trip; and bad input raises relume errors."""
+save and open round-trip; and bad input (exposures and light colours out of range among it) raises
+relume errors."""
 import json
 import os
 
@@ -219,6 +220,20 @@ def test_bad_relight_input_raises_relume_errors(compressed, light):
         compressed.relight(light, device="no-such-device")
     with pytest.raises(relume.Error, match=r"lights must have shape \(count, 40, 3\)"):
         compressed.relight_batch(light)
+
+
+def test_exposures_and_light_colours_out_of_range_raise_relume_errors(compressed, tmp_path):
+    # The background relights to 0, which 2**128 (Inf in float) once made NaN: a crash in the
+    # 8-bit encoder. Such exposures, and colours that overflow relit floats, are refused.
+    relit = compressed.relight(light_dir=(0, 0, 1))
+    for exposure in (128, -41, float("nan"), float("inf")):
+        with pytest.raises(relume.Error, match=r"stops is out of range \(from -40 to 40\)"):
+            relume.write_image(tmp_path / "x.png", relit, exposure=exposure)
+        assert not (tmp_path / "x.png").exists()
+    relume.write_image(tmp_path / "x.png", relit, exposure=40)
+    assert relume.read_image(tmp_path / "x.png").min() == 0
+    with pytest.raises(relume.Error, match=r"non-negative numbers up to 1e\+06"):
+        compressed.relight(light_dir=(0, 0, 1), color=(1e7, 1, 1))
 
 
 def test_bad_files_raise_file_errors(saved, tmp_path):

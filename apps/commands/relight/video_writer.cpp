@@ -17,6 +17,7 @@ extern "C" {
 #include <vector>
 
 #include "core/console.hpp"
+#include "image/srgb_codes.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -197,7 +198,7 @@ void VideoWriter::add_frame(const Image& image, double exposure) {
     for (int x = 0; x < s.width; ++x)
       for (int c = 0; c < 3; ++c) {
         const float linear = image.at(x, y, image.channels >= 3 ? c : 0) * scale;
-        const float encoded = linear_to_srgb(std::clamp(linear, 0.0f, 1.0f));
+        const float encoded = linear_to_srgb(unit_clamped(linear));
         s.rgb[(std::size_t(y) * s.width + x) * 3 + c] =
             static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
       }
