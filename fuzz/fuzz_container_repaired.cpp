@@ -7,7 +7,7 @@
 #include <string>
 
 #include "container/container.hpp"
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 #include "fuzz_support.hpp"
 
 namespace {
