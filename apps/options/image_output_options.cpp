@@ -25,6 +25,13 @@ void add_image_output_options(CLI::App& command, ImageOutputOptions& options) {
 
 void check_image_output(const std::filesystem::path& path, const ImageOutputOptions& options) {
   check_image_write_options(path, {0, options.bits, options.half});
+  // An exposure given for a float output was ignored without a word.
+  const bool floats = is_float_image_format(path) && options.bits == 0;
+  if (floats && (options.exposure == "auto" ||
+                 parse_finite_number(options.exposure, "--exposure", "stops") != 0))
+    note("--exposure %s leaves %s unexposed: it is written as linear floats (the exposure applies "
+         "to integer outputs: PNG, JPEG, TIFF with --bits)",
+         options.exposure.c_str(), path.string().c_str());
 }
 
 double display_exposure(const ImageOutputOptions& options, const Image& image,

@@ -127,6 +127,14 @@ VideoWriter::VideoWriter(const fs::path& path, int width, int height, int frames
   if (s.width < 2 || s.height < 2)
     throw Error("video " + path.string() + ": frames of " + std::to_string(width) + "x" +
                 std::to_string(height) + " are too small");
+  // 4:2:0 chroma needs even sizes: an odd last row or column was left out without a word.
+  if (s.width != width || s.height != height)
+    note("video %s: frames of %dx%d are encoded as %dx%d (its chroma needs even sizes): the last "
+         "%s left out; the image frames keep it",
+         path.string().c_str(), width, height, s.width, s.height,
+         s.width != width && s.height != height ? "row and column are"
+         : s.height != height                   ? "row is"
+                                                : "column is");
   if (frames_per_second < 1 || frames_per_second > 240)
     throw Error("video frame rate must be 1 to 240, got " + std::to_string(frames_per_second));
   // FFmpeg's own messages (libx264's statistics) only when verbose; errors come back as codes.
