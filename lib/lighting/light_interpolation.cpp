@@ -26,11 +26,14 @@ double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+// Where the squared norm overflows or underflows, scaled before it is squared (Eigen's stable
+// norm): (1, 1e308, 1) once became a zero direction, and (1e-320, 0, 0) "zero".
 Eigen::Vector3d unit_direction(const Eigen::Vector3d& direction, const std::string& what) {
-  if (!direction.allFinite() || !(direction.norm() > 0))
-    throw Error(what + " (" + std::to_string(direction.x()) + ", " + std::to_string(direction.y()) +
-                ", " + std::to_string(direction.z()) + ") is zero or not finite");
-  return direction.normalized();
+  if (!direction.allFinite() || !(direction.stableNorm() > 0))
+    throw Error(what + " (" + number_text(direction.x()) + ", " + number_text(direction.y()) +
+                ", " + number_text(direction.z()) + ") is zero or not finite");
+  const double norm = direction.norm();
+  return std::isnormal(norm) ? Eigen::Vector3d(direction / norm) : direction.stableNormalized();
 }
 
 }  // namespace

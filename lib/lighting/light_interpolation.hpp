@@ -55,7 +55,8 @@ class LightInterpolation {
   // well as for what weights refuses.
   LightRgb light_vector(const DirectionalLight& light) const;
 
-  // True when a triangle holds `direction` (unit), false when it takes the rim's weights.
+  // True when a triangle holds `direction` (any length, normalized here), false when it takes the
+  // rim's weights.
   bool covers(const Eigen::Vector3d& direction) const;
 
   const SphereTriangulation& triangulation() const { return triangulation_; }

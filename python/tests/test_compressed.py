@@ -236,6 +236,44 @@ def test_exposures_and_light_colours_out_of_range_raise_relume_errors(compressed
         compressed.relight(light_dir=(0, 0, 1), color=(1e7, 1, 1))
 
 
+# Edges (0, range limits, the largest doubles, overflow, inf and nan) and random magnitudes.
+NUMBER_EDGES = (0.0, -0.0, 1.0, -1.0, 0.5, 40.0, 40.5, -41.0, 90.0, 91.0, 128.0, 1e-30, 1e-320,
+                1e6, 1e7, 1e38, 1e39, 1e308, -1e308, float("inf"), float("-inf"), float("nan"))
+
+
+def random_number(rng):
+    if rng.random() < 0.5:
+        return NUMBER_EDGES[rng.integers(len(NUMBER_EDGES))]
+    return float(rng.choice((-1, 1)) * 10.0 ** rng.uniform(-12, 12))
+
+
+def test_random_numbers_in_every_numeric_argument_relight_or_raise_relume_errors(compressed,
+                                                                                  tmp_path):
+    # Property (fixed seed): each numeric argument of relight, and write_image's exposure, given a
+    # random number either gives finite pixels or raises relume.Error; none crashes.
+    rng = np.random.default_rng(35)
+    arguments = ("light_dir", "color", "spread", "residual", "exposure")
+    for case in range(40):
+        name = arguments[case % len(arguments)]
+        call = {"light_dir": (0.0, 0.3, 1.0)}
+        if name in ("light_dir", "color"):
+            call[name] = tuple(random_number(rng) for _ in range(3))
+        elif name == "spread":
+            call[name] = random_number(rng)
+        elif name == "residual":
+            value = random_number(rng)
+            call[name] = int(value) if np.isfinite(value) and abs(value) < 2**31 else -1
+        try:
+            relit = compressed.relight(**call, reference=case % 2 == 1)
+            assert relit.shape[:2] == (compressed.height, compressed.width)
+            assert np.isfinite(relit).all()
+            if name == "exposure":
+                relume.write_image(tmp_path / "x.png", relit, exposure=random_number(rng))
+                assert relume.read_image(tmp_path / "x.png").shape[:2] == relit.shape[:2]
+        except relume.Error:
+            pass
+
+
 def test_bad_files_raise_file_errors(saved, tmp_path):
     with pytest.raises(relume.FileError) as raised:
         relume.open(tmp_path / "missing.relume")
