@@ -24,6 +24,7 @@
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "core/signals.hpp"
+#include "options/finite_numbers.hpp"
 #include "options/output_paths.hpp"
 #ifdef RELUME_HAVE_MPI
 #include "commands/compress/mpi_ranks.hpp"
@@ -160,6 +161,7 @@ int run(int argc, char** argv) {
       "the memory available, within the cgroup and ulimit limits)");
   for (const auto& setup : relume::registered_commands()) setup(app);
   bound_thread_options(app);
+  relume::refuse_non_finite_numbers(app);
 
   const std::string word = first_word(argc, argv);
   if (word == "help") return print_help(app, argc, argv);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <relume/error.hpp>
 
+#include "core/crc32.hpp"
 #include "core/memory_budget.hpp"
 
 namespace relume::fuzz {
@@ -24,7 +25,38 @@ namespace {
   return true;
 }();
 
+std::uint64_t load(const std::string& bytes, std::size_t at, int width) {
+  std::uint64_t value = 0;
+  for (int b = 0; b < width; ++b)
+    value |= std::uint64_t(static_cast<unsigned char>(bytes[at + b])) << (8 * b);
+  return value;
+}
+
+void store32(std::string& bytes, std::size_t at, std::uint32_t value) {
+  for (int b = 0; b < 4; ++b) bytes[at + b] = static_cast<char>((value >> (8 * b)) & 0xFF);
+}
+
 }  // namespace
+
+void repair_container_checksums(std::string& bytes) {
+  constexpr std::size_t table_start = 16;  // magic, version, section count
+  if (bytes.size() < table_start) return;
+  // Versions 3 and 4 were left unrepaired once, so mutations of the newest containers stopped at
+  // the frame check.
+  const std::uint64_t version = load(bytes, 8, 4), count = load(bytes, 12, 4);
+  if (version < 1 || version > 16 || count > 64) return;
+  const std::size_t entry = version == 1 ? 40 : 48;
+  const std::size_t crc_at = entry - 8;  // within an entry
+  const std::size_t table_end = table_start + count * entry;
+  if (bytes.size() < table_end + 4) return;
+  for (std::size_t s = 0; s < count; ++s) {
+    const std::size_t at = table_start + s * entry;
+    const std::uint64_t offset = load(bytes, at + 16, 8), length = load(bytes, at + 24, 8);
+    if (offset <= bytes.size() && length <= bytes.size() - offset)
+      store32(bytes, at + crc_at, relume::crc32(bytes.data() + offset, length));
+  }
+  store32(bytes, table_end, relume::crc32(bytes.data(), table_end));
+}
 
 void expect_only_relume_errors(const std::function<void()>& read) {
   try {

@@ -1,6 +1,7 @@
 // What the fuzz targets share: the rule that a reader may refuse an input only with a
-// relume::Error (anything else escaping is a finding, reported by libFuzzer as a crash), and a
-// scratch file or folder in memory-backed storage for readers that take a path.
+// relume::Error (anything else escaping is a finding, reported by libFuzzer as a crash), a
+// scratch file or folder in memory-backed storage for readers that take a path, and the repair of
+// a mutated container's checksums.
 #pragma once
 
 #include <cstddef>
@@ -20,5 +21,10 @@ const std::filesystem::path& scratch_folder();
 // Writes `size` bytes to scratch_folder() / name and returns the path.
 std::filesystem::path write_scratch_file(const std::string& name, const std::uint8_t* data,
                                          std::size_t size);
+
+// Recomputes every section's CRC-32 over the bytes its table entry points at, then the table's,
+// for every format version (40-byte entries in version 1, 48 from 2), so that a mutated section
+// passes the frame check and reaches its decoder. Leaves bytes without a whole table alone.
+void repair_container_checksums(std::string& bytes);
 
 }  // namespace relume::fuzz

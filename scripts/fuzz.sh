@@ -31,6 +31,9 @@ fi
 targets=(
   fuzz_container:container
   fuzz_container_repaired:container
+  fuzz_section_coding:section_coding
+  fuzz_container_strips:container
+  fuzz_npz_export:container
   fuzz_npy:npy
   fuzz_light_files:light_files
   fuzz_field_folder:field_folder

@@ -2,6 +2,7 @@
 #include "options/frame_pattern.hpp"
 
 #include <cctype>
+#include <cstdint>
 #include <relume/error.hpp>
 
 namespace relume {
@@ -41,7 +42,8 @@ FramePattern::FramePattern(const std::string& pattern, int start_number)
 }
 
 std::string FramePattern::path(int index) const {
-  std::string number = std::to_string(start_number_ + index);
+  // In 64 bits: --start-number 2147483647 and a second frame overflowed an int.
+  std::string number = std::to_string(std::int64_t(start_number_) + index);
   if (static_cast<int>(number.size()) < width_)
     number.insert(0, std::size_t(width_) - number.size(), '0');
   return before_ + number + after_;

@@ -21,7 +21,8 @@ struct ImageOutputOptions {
 
 void add_image_output_options(CLI::App& command, ImageOutputOptions& options);
 
-// Throws Error when the options do not fit `path` (before any work is done).
+// Throws Error when the options do not fit `path` (before any work is done); notes that an
+// exposure given for a float output leaves it unexposed.
 void check_image_output(const std::filesystem::path& path, const ImageOutputOptions& options);
 
 // The exposure in stops of a display-referred (integer or video) output of `image`: the given

@@ -44,8 +44,11 @@ struct ImageReadOptions {
 // Throws Error naming the file when it cannot be read.
 Image read_image(const std::filesystem::path& path, const ImageReadOptions& options = {});
 
+// The largest exposure magnitude in stops: 2^40 still scales a float pixel finitely.
+inline constexpr double max_exposure_stops = 40;
+
 struct ImageWriteOptions {
-  double exposure = 0.0;  // stops; applied to integer outputs only
+  double exposure = 0.0;  // stops, within +-max_exposure_stops; applied to integer outputs only
   // Integer outputs: 8 or 16 bits per channel (JPEG: 8 only). 0: the format's default, 8 for
   // PNG and JPEG, linear float for TIFF. TIFF with 8 or 16 is an integer output.
   int bits = 0;
@@ -53,7 +56,8 @@ struct ImageWriteOptions {
 };
 
 // Throws Error when `options` do not fit the format of `path` (bits other than 0, 8 or 16, 16-bit
-// JPEG, bits for a float-only format, half for anything but EXR). write_image checks the same;
+// JPEG, bits for a float-only format, half for anything but EXR) or the exposure is not a finite
+// number within +-max_exposure_stops. write_image checks the same;
 // commands call this before their work.
 void check_image_write_options(const std::filesystem::path& path, const ImageWriteOptions& options);
 

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "compress/cluster_basis.hpp"
+#include "core/interruption.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 
@@ -13,7 +14,18 @@ namespace {
 
 constexpr std::size_t rows_per_task = 512;
 
-std::size_t task_count(std::size_t rows) { return (rows + rows_per_task - 1) / rows_per_task; }
+std::size_t task_count(std::size_t rows, std::size_t per_task = rows_per_task) {
+  return (rows + per_task - 1) / per_task;
+}
+
+// The projections of a task's rows on every basis vector are held at once: at 100,000 clusters of
+// 2 terms, 512 rows of them took 400 MB per thread. A task takes fewer rows then.
+constexpr std::uint64_t projection_block_bytes = std::uint64_t(8) << 20;
+
+std::size_t projected_rows_per_task(std::uint64_t basis_vectors) {
+  const std::uint64_t fitting = projection_block_bytes / sizeof(float) / std::max<std::uint64_t>(1, basis_vectors);
+  return std::size_t(std::clamp<std::uint64_t>(fitting, 1, rows_per_task));
+}
 
 // Keeps the `count` smallest (error, cluster) pairs best first, making sure `include` is among
 // them, and writes them to `out` (padding with -1).
@@ -37,6 +49,13 @@ void write_best(std::vector<std::pair<float, std::int32_t>>& scored, int count,
 
 }  // namespace
 
+std::uint64_t candidate_search_bytes(int clusters, int terms, int lights, unsigned threads) {
+  const std::uint64_t vectors = std::uint64_t(clusters) * terms;
+  const std::uint64_t block = std::uint64_t(projected_rows_per_task(vectors)) * vectors * sizeof(float);
+  const std::uint64_t scored = std::uint64_t(clusters) * sizeof(std::pair<float, std::int32_t>);
+  return vectors * lights * sizeof(float) + std::uint64_t(std::max(1u, threads)) * (block + scored);
+}
+
 double AssignmentResult::total_objective() const {
   double total = 0;
   for (const float value : objective) total += value;
@@ -59,14 +78,16 @@ CandidateLists nearest_subspace_candidates(const WorkingRows& rows, const Cluste
   CandidateLists lists;
   lists.width = count;
   lists.clusters.assign(rows.rows() * count, -1);
-  parallel_for(task_count(rows.rows()), threads, [&](std::size_t task, unsigned) {
-    const std::size_t begin = task * rows_per_task;
-    const std::size_t end = std::min(rows.rows(), begin + rows_per_task);
+  const std::size_t per_task = projected_rows_per_task(std::uint64_t(clusters) * terms);
+  parallel_for(task_count(rows.rows(), per_task), threads, [&](std::size_t task, unsigned) {
+    const std::size_t begin = task * per_task;
+    const std::size_t end = std::min(rows.rows(), begin + per_task);
     std::vector<std::pair<float, std::int32_t>> scored;
     Eigen::MatrixXf projections;
     const bool dense = !options.pool;
     if (dense) projections = rows.values.middleRows(begin, end - begin) * q_all;  // rows x (K t)
     for (std::size_t r = begin; r < end; ++r) {
+      throw_if_interrupted();  // a row scores every cluster: 100,000 of them take a while
       const auto x = rows.values.row(r);
       scored.clear();
       const auto score = [&](std::int32_t k, float energy) {
@@ -123,6 +144,7 @@ AssignmentResult assign_to_best_cluster(const WorkingRows& rows, const ClusterMo
     const std::size_t end = std::min(count, begin + rows_per_task);
     float weights[max_cluster_terms];
     for (std::size_t r = begin; r < end; ++r) {
+      throw_if_interrupted();
       const std::int32_t* list = candidates.row(r);
       float best = HUGE_VALF, second = HUGE_VALF;
       for (int slot = 0; slot < candidates.width && list[slot] >= 0; ++slot) {

@@ -40,6 +40,10 @@ struct CandidateOptions {
 CandidateLists nearest_subspace_candidates(const WorkingRows& rows, const ClusterModel& model,
                                            const CandidateOptions& options, unsigned threads);
 
+// The most nearest_subspace_candidates holds besides its lists: every basis orthonormalized, and
+// per thread a block of rows projected on them (a few MB at most) and a score per cluster.
+std::uint64_t candidate_search_bytes(int clusters, int terms, int lights, unsigned threads);
+
 struct AssignmentResult {
   std::vector<std::int32_t> best;    // cluster with the smallest L1 residual
   std::vector<std::int32_t> second;  // the runner-up among the candidates, or -1

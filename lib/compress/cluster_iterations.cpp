@@ -7,6 +7,7 @@
 
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_seeding.hpp"
+#include "core/console.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/interruption.hpp"
 #include "core/parallel.hpp"
@@ -169,6 +170,14 @@ void iterate_clusters(const WorkingRows& rows, ClusterModel& model,
 ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions& options,
                                ClusteringTrace& trace, bool assign) {
   const auto start = Clock::now();
+  // More clusters than the rows can fill at the size rules' minimum: the surplus is seeded (one
+  // by one, a long wait at 100,000) only for the rules to merge it away.
+  const std::size_t minimum = std::size_t(std::max(1, options.sizes.minimum_for(options.terms)));
+  if (!options.quiet && std::size_t(options.clusters) > rows.rows() / minimum)
+    note(
+        "compress: %d clusters are more than %zu functions can fill (clusters with fewer than %zu "
+        "functions are merged into others): at most %zu will remain; ask for fewer clusters",
+        options.clusters, rows.rows(), minimum, rows.rows() / minimum);
   SeedingOptions seeding;
   seeding.clusters = options.clusters;
   seeding.terms = options.terms;
@@ -177,6 +186,7 @@ ClusterModel seed_clusters_for(const WorkingRows& rows, const ClusteringOptions&
   seeding.seed = options.seed;
   seeding.threads = options.threads;
   seeding.assign_after_rounds = assign;
+  seeding.quiet = options.quiet;
   ClusterModel model = seed_clusters(rows, seeding);
   trace.seeding_seconds += seconds_since(start);
   return model;

@@ -8,7 +8,9 @@
 
 #include "compress/cluster_assignment.hpp"
 #include "compress/cluster_basis.hpp"
+#include "core/interruption.hpp"
 #include "core/parallel.hpp"
+#include "core/progress.hpp"
 
 namespace relume {
 namespace {
@@ -93,7 +95,11 @@ ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& option
       std::size_t(4 * options.terms), sample_size / std::size_t(std::max(1, model.clusters)) / 2);
   Eigen::VectorXf distance = Eigen::VectorXf::Ones(static_cast<Eigen::Index>(sample_size));
   std::size_t seed = random() % std::max<std::size_t>(1, sample_size);
+  // A seed takes milliseconds; 100,000 of them took minutes without a word or a look at signals.
+  ProgressReporter progress("compress: seeding clusters", std::uint64_t(model.clusters),
+                            options.quiet);
   for (int k = 0; k < model.clusters; ++k) {
+    progress.advance();
     const std::vector<float> basis =
         grow_subspace(sample, seed, options.terms, grow, options.threads);
     model.bases.insert(model.bases.end(), basis.begin(), basis.end());
@@ -115,11 +121,13 @@ ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& option
       }
     }
   }
+  progress.finish();
 
   // Least-squares k-subspace rounds over all rows.
   CandidateOptions nearest;
   nearest.count = 1;
   for (int round = 0; round <= options.l2_rounds; ++round) {
+    throw_if_interrupted();
     if (round == options.l2_rounds && !options.assign_after_rounds) {
       model.assignment.clear();
       break;

@@ -23,10 +23,12 @@ struct SeedingOptions {
   bool assign_after_rounds = true;
   std::uint64_t seed = 1;
   unsigned threads = 0;
+  bool quiet = false;  // no progress line while the seeds are chosen one by one
 };
 
 // Bases (orthonormal rows) and the least-squares assignment (empty without
-// assign_after_rounds); weights are left empty. Fewer clusters than asked are returned only when
+// assign_after_rounds); weights are left empty. Reports its progress seed by seed, and stops
+// (relume::Interrupted) within a seed or a row of an interruption. Fewer clusters than asked are returned only when
 // there are fewer rows than clusters.
 ClusterModel seed_clusters(const WorkingRows& rows, const SeedingOptions& options);
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <relume/error.hpp>
 
+#include "compress/cluster_assignment.hpp"
 #include "compress/peak_residual_allocation.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
@@ -26,6 +27,17 @@ constexpr std::uint64_t quantization_sample_rows = QuantizationBudget{}.sample_r
 // strips at 1280 x 1280 x 253, the passes spent more time in the kernel than computing.
 constexpr std::uint64_t strip_value_bytes_at_most = std::uint64_t(16) << 20;
 
+// What the clustering holds per cluster (its normal equations, best and current bases) and what
+// its candidate search holds: at 100,000 clusters hundreds of MB that the plan once left out.
+std::uint64_t clustering_state_bytes(const CompressionOptions& options, std::uint64_t lights,
+                                     unsigned threads) {
+  const std::uint64_t terms = std::uint64_t(options.clustering.terms);
+  const std::uint64_t clusters = std::uint64_t(options.clustering.clusters);
+  return clusters * lights * (terms * (terms + 1) / 2 + 3 * terms + 2) * 8 +
+         candidate_search_bytes(options.clustering.clusters, options.clustering.terms,
+                                int(lights), resolve_thread_count(threads));
+}
+
 }  // namespace
 
 std::uint64_t functions_inside_mask(const ReflectanceField& header) {
@@ -46,18 +58,21 @@ std::string CompressionPlan::describe() const {
   char line[1024];
   if (!streamed) {
     std::snprintf(line, sizeof line,
-                  "plan: in memory (the field is %s as float32, compressing it needs about %s; "
-                  "the budget is %s, %s)",
+                  "plan: in memory (the field is %s as float32, compressing it needs about %s "
+                  "on top of the %s the process holds; the budget is %s, %s)",
                   byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
-                  byte_size_text(budget).c_str(), budget_source.c_str());
+                  byte_size_text(resident_bytes).c_str(), byte_size_text(budget).c_str(),
+                  budget_source.c_str());
   } else {
     std::snprintf(line, sizeof line,
                   "plan: streamed (the field is %s as float32, in memory it would need about %s; "
-                  "the budget is %s, %s): strips of %d pixel rows, a clustering sample of up to "
+                  "the budget is %s, %s, on top of the %s the process holds): strips of %d pixel "
+                  "rows, a clustering sample of up to "
                   "%zu functions, scratch of up to %s in %s, model and pass state about %s%s, "
                   "quantization measured on %zu original functions",
                   byte_size_text(field_bytes).c_str(), byte_size_text(in_memory_bytes).c_str(),
-                  byte_size_text(budget).c_str(), budget_source.c_str(), strip_rows, sample_rows,
+                  byte_size_text(budget).c_str(), budget_source.c_str(),
+                  byte_size_text(resident_bytes).c_str(), strip_rows, sample_rows,
                   byte_size_text(scratch_bytes).c_str(), scratch_folder.string().c_str(),
                   byte_size_text(model_bytes).c_str(),
                   compressed_on_disk ? " (the compressed field on disk)" : "", quantization_rows);
@@ -83,7 +98,8 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   // indices. In memory it is held as built, as stored and as quantized.
   const std::uint64_t compressed =
       functions * (terms * 4 + std::uint64_t(residual_row_cap(options, int(lights))) * 8 + 8);
-  plan.in_memory_bytes = 2 * plan.field_bytes + 3 * compressed;
+  const std::uint64_t clustering = clustering_state_bytes(options, lights, threads);
+  plan.in_memory_bytes = 2 * plan.field_bytes + 3 * compressed + clustering;
   if (plan.in_memory_bytes <= budget && !stream_anyway) return plan;
 
   plan.streamed = true;
@@ -108,8 +124,7 @@ CompressionPlan plan_compression(const ReflectanceField& header, const Compressi
   // On disk: the compressed strips, then the container's raw row sections and their codings.
   if (plan.compressed_on_disk) plan.scratch_bytes += 2 * compressed;
   const std::uint64_t refine = functions * (8 + terms * 4);
-  plan.model_bytes = std::max(build, refine) +
-                     clusters * lights * (terms * (terms + 1) / 2 + 3 * terms + 2) * 8;
+  plan.model_bytes = std::max(build, refine) + clustering;
   // Per pixel row of a strip: the strip's field, its prepared rows, the built rows and the
   // error measure's reconstruction, and every reading thread's decoded image rows.
   const std::uint64_t strip_row_bytes =

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "container/container.hpp"
 #include "container/container_sections.hpp"
@@ -81,6 +82,35 @@ nlohmann::ordered_json precision_cost_json(const nlohmann::ordered_json& report,
   return cost;
 }
 
+namespace {
+
+// "N clusters", and when fewer than asked, why: the size rules merged clusters of too few
+// functions (--clusters 2048 ending with 243 said nothing), or fewer functions than clusters.
+std::string clusters_text(const nlohmann::ordered_json& report, int clusters) {
+  const nlohmann::ordered_json& parameters = report["parameters"];
+  const int asked = parameters.value("clusters_asked", clusters);
+  std::string text = std::to_string(clusters) + " clusters";
+  if (clusters >= asked) return text;
+  long long merged = 0;
+  const auto count_merged = [&](const nlohmann::ordered_json& clustering) {
+    if (clustering.contains("iterations"))
+      for (const auto& iteration : clustering["iterations"])
+        merged += iteration.value("merged", 0LL);
+  };
+  if (report.contains("clustering")) count_merged(report["clustering"]);
+  if (report.contains("multires")) count_merged(report["multires"]["low_clustering"]);
+  text += " of the " + std::to_string(asked) + " asked";
+  if (merged > 0)
+    text += " (" + std::to_string(merged) + " merged into others for having fewer than " +
+            std::to_string(parameters.value("min_cluster_size", 0)) + " functions)";
+  else if (report["field"].value("stored_rows", std::int64_t(asked)) < asked)
+    text += " (only " + std::to_string(report["field"]["stored_rows"].get<std::int64_t>()) +
+            " functions are stored)";
+  return text;
+}
+
+}  // namespace
+
 std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
   char error[200];
   const auto outside = report["field"]["outside_mask"].get<std::int64_t>();
@@ -108,13 +138,13 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
   char line[1024];
   std::snprintf(line, sizeof line,
                 "compressed %s -> %s: %llu bytes (%.4f of float32), %s, largest per-light error "
-                "%.3g of its function's peak, %lld negative values, %d clusters%s, %.1f s",
+                "%.3g of its function's peak, %lld negative values, %s%s, %.1f s",
                 report["input"].get<std::string>().c_str(),
                 output.empty() ? "memory" : output.c_str(),
                 static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
                 report["ratio"].get<double>(), error, per_light["largest_relative"].get<double>(),
-                static_cast<long long>(per_light["negative_values"].get<std::int64_t>()), clusters,
-                dark, report["seconds"].get<double>());
+                static_cast<long long>(per_light["negative_values"].get<std::int64_t>()),
+                clusters_text(report, clusters).c_str(), dark, report["seconds"].get<double>());
   return line;
 }
 

@@ -28,7 +28,8 @@ nlohmann::ordered_json precision_cost_json(const nlohmann::ordered_json& report,
 
 // One line for users, leading with the error over what is stored (paper Eq. 16 over the
 // functions inside the mask); with a mask, the whole frame's error follows, in which every
-// background function, not stored, counts as entirely lost.
+// background function, not stored, counts as entirely lost. Ending with fewer clusters than asked
+// is said with the reason (clusters of too few functions merged, or too few functions).
 std::string summary_line(const nlohmann::ordered_json& report, int clusters);
 
 }  // namespace relume

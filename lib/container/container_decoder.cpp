@@ -306,11 +306,12 @@ class ContainerDecoder {
     ByteReader set = reader("dark_pixels", bit_set_limit(pixels));
     const std::vector<std::uint64_t> dark = decode_bit_set(set, pixels, pixels);
     field.dark_pixels.assign(dark.begin(), dark.end());
+    check_dark_pixels(field, where("dark_pixels"));
     ByteReader values = sized_reader(
         "dark", {dark.empty() ? 0 : std::uint64_t(field.channels), std::uint64_t(field.lights), 4});
     field.dark.resize(values.remaining() / 4);
     for (float& v : field.dark) v = values.f32();
-    check_dark(field, where("dark_pixels"));
+    check_dark_values(field, where("dark"));
     if (parsed_.layout.version >= 4) decode_dark_gains(field);
   }
 

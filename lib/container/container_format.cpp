@@ -6,7 +6,7 @@
 #include <relume/error.hpp>
 
 #include "container/container_bytes.hpp"
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 #include "core/parallel.hpp"
 
 namespace relume {

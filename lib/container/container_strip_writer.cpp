@@ -4,7 +4,7 @@
 
 #include "container/container_encoding.hpp"
 #include "container/container_strips.hpp"
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 #include "container/section_file_coding.hpp"
 #include "core/atomic_file.hpp"
 #include "core/disk_file.hpp"

@@ -3,6 +3,7 @@
 
 #include <zstd.h>
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <relume/error.hpp>
@@ -166,8 +167,12 @@ void check_coded_size(std::uint64_t coded_bytes, std::uint64_t raw_bytes,
   }
   // A zstd block of at most 128 KiB takes at least 4 coded bytes (a 3-byte header and one byte
   // of an RLE block), so no valid frame decodes to more than 32768 times its size.
+  // A coded size of 2^49 or more (the product would wrap) may decode to any size: whether the
+  // file holds that many bytes is the section table's next check.
   constexpr std::uint64_t max_zstd_ratio = (128u << 10) / 4;
-  if (raw_bytes > coded_bytes * max_zstd_ratio)
+  const bool product_fits =
+      coded_bytes <= std::numeric_limits<std::uint64_t>::max() / max_zstd_ratio;
+  if (product_fits && raw_bytes > coded_bytes * max_zstd_ratio)
     throw Error(where + ": " + std::to_string(coded_bytes) + " zstd-coded bytes cannot decode to " +
                 std::to_string(raw_bytes) + " bytes as the section table says (at most " +
                 std::to_string(max_zstd_ratio) + " times as many): the section is corrupt");

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 #include "core/interruption.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"

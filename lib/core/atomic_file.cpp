@@ -40,19 +40,31 @@ void rename_or_throw(const fs::path& from, const fs::path& to) {
     throw Error("cannot rename " + from.string() + " to " + to.string() + ": " + ec.message());
 }
 
-bool writable_folder(const fs::path& folder) { return ::access(folder.c_str(), W_OK | X_OK) == 0; }
+// Why this process cannot create a file in `folder`, or "" when it can. access() answers yes for
+// root in folders that take no new files (/proc), so a probe file is made and removed; it is
+// registered meanwhile, so that a signal handler removes it too.
+std::string why_folder_takes_no_files(const fs::path& folder) {
+  const fs::path probe = temporary_path_for(folder / "write-probe");
+  const TemporaryPathRegistration registration(probe, TemporaryPathRegistration::Kind::file);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) return errno == EEXIST ? "" : system_reason();
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return "";
+}
 
 }  // namespace
 
 void check_output_file_location(const fs::path& target) {
   const fs::path parent = folder_of(target);
   if (!fs::is_directory(parent))
-    throw Error("cannot write " + target.string() + ": folder " + parent.string() +
-                " does not exist");
+    throw Error("cannot write " + target.string() + ": " +
+                (fs::exists(parent) ? parent.string() + " is a file, not a folder"
+                                    : "folder " + parent.string() + " does not exist"));
   if (fs::is_directory(target)) throw Error("cannot write " + target.string() + ": it is a folder");
-  if (!writable_folder(parent))
+  if (const std::string why = why_folder_takes_no_files(parent); !why.empty())
     throw Error("cannot write " + target.string() + ": folder " + parent.string() +
-                " is not writable");
+                " is not writable (" + why + ")");
 }
 
 void check_output_folder_location(const fs::path& folder) {
@@ -64,9 +76,9 @@ void check_output_folder_location(const fs::path& folder) {
   if (!fs::is_directory(existing))
     throw Error("cannot write the folder " + folder.string() + ": " + existing.string() +
                 " is not a folder");
-  if (!writable_folder(existing))
+  if (const std::string why = why_folder_takes_no_files(existing); !why.empty())
     throw Error("cannot write the folder " + folder.string() + ": folder " + existing.string() +
-                " is not writable");
+                " is not writable (" + why + ")");
 }
 
 void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {

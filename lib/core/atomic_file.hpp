@@ -13,8 +13,9 @@
 namespace relume {
 
 // The checks write_atomically makes of `target` before it writes, for commands to make before
-// they start long work: its folder exists and this process may create files in it, and `target`
-// is not a folder. Throws Error naming `target`.
+// they start long work: its folder exists and this process can create files in it (a probe file
+// is made and removed: /proc passes access() for root), and `target` is not a folder. Throws
+// Error naming `target`, and its folder when that is a file or does not exist.
 void check_output_file_location(const std::filesystem::path& target);
 
 // The same for write_folder_atomically: `folder` is not a file, and the folder itself or, when

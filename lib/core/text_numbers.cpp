@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <system_error>
 
 namespace relume {
@@ -58,6 +59,12 @@ std::optional<double> parse_finite_double(std::string_view token) {
   const ParsedNumber parsed = parse_number_token(token);
   if (parsed.status != ParsedNumber::Status::number) return std::nullopt;
   return parsed.value;
+}
+
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 std::optional<std::uint64_t> parse_unsigned(std::string_view token) {

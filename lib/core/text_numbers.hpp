@@ -36,6 +36,10 @@ ParsedNumber parse_number_token(std::string_view token, bool decimal_comma = fal
 // A finite number, or nullopt.
 std::optional<double> parse_finite_double(std::string_view token);
 
+// `value` as messages show it: the shortest of fixed and scientific, 6 significant digits ("128",
+// "0.5", "1e+300", "inf", "nan").
+std::string number_text(double value);
+
 // A whole token of decimal digits that fits 64 bits, or nullopt.
 std::optional<std::uint64_t> parse_unsigned(std::string_view token);
 

@@ -7,7 +7,7 @@
 #include <relume/error.hpp>
 #include <set>
 
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 
 namespace relume {
 namespace {

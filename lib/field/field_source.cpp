@@ -111,6 +111,14 @@ void check_counts(const FieldSource& source, const fs::path& path) {
 
 FieldSource describe_field(const fs::path& path) {
   if (!fs::exists(path)) throw Error("reflectance field not found: " + path.string());
+  // Anything else is read as an .lp file, which showed an image's first bytes as its light count.
+  if (!fs::is_directory(path) && is_image_file(path)) {
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    throw Error(path.string() +
+                " is an image, not a reflectance field: give the folder of the light images "
+                "(DiLiGenT's layout, with light_directions.txt: " +
+                folder.string() + " if that is it) or an RTI .lp file that lists them");
+  }
   const FieldSource source = fs::is_directory(path) ? describe_folder(path) : describe_lp(path);
   check_counts(source, path);
   return source;

@@ -23,7 +23,9 @@ AutoExposure auto_exposure(const Image& image, const std::vector<std::uint8_t>& 
   std::nth_element(lit.begin(), at, lit.end());
   result.percentile = *at;
   result.white = result.percentile / 0.9;
-  result.stops = std::log2(0.9 / result.percentile);
+  // Within what write_image accepts: a percentile of 1e-30 or of Inf asks for more than 40 stops.
+  result.stops =
+      std::clamp(std::log2(0.9 / result.percentile), -max_exposure_stops, max_exposure_stops);
   return result;
 }
 

@@ -12,7 +12,7 @@
 namespace relume {
 
 struct AutoExposure {
-  double stops = 0;       // the exposure; 0 when nothing is lit
+  double stops = 0;       // the exposure, within +-max_exposure_stops; 0 when nothing is lit
   double percentile = 0;  // the luminance that maps to 0.9
   double white = 0;       // the luminance that maps to 1 (percentile / 0.9); 0 when nothing is lit
   std::size_t lit_pixels = 0;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <relume/error.hpp>
 
+#include "image/png_chunks.hpp"
+
 namespace relume {
 
 namespace {
@@ -20,6 +22,7 @@ std::string declared_color_space(const OIIO::ImageSpec& spec) {
 }  // namespace
 
 StoredEncoding read_stored_encoding(const std::filesystem::path& path) {
+  check_png_chunks(path);
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) throw Error("cannot read image " + path.string() + ": " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();

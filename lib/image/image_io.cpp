@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/memory_budget.hpp"
+#include "core/text_numbers.hpp"
 #include "image/image_bytes.hpp"
 #include "image/image_encoding.hpp"
 #include "image/image_rows.hpp"
@@ -65,6 +66,10 @@ bool is_float_image_format(const fs::path& path) {
 
 void check_image_write_options(const fs::path& path, const ImageWriteOptions& options) {
   const std::string ext = lower_extension(path);
+  if (!(std::abs(options.exposure) <= max_exposure_stops))
+    throw Error(path.string() + ": exposure " + number_text(options.exposure) +
+                " stops is out of range (from -" + number_text(max_exposure_stops) + " to " +
+                number_text(max_exposure_stops) + ")");
   if (options.bits != 0 && options.bits != 8 && options.bits != 16)
     throw Error(path.string() + ": integer images have 8 or 16 bits per channel, not " +
                 std::to_string(options.bits));
@@ -108,7 +113,7 @@ void encode_image(const fs::path& path, const std::string& target, OIIO::Filesys
   } else {
     data = image.pixels;
     if (!as_float)
-      for (float& v : data) v = linear_to_srgb(std::clamp(v * scale, 0.0f, 1.0f));
+      for (float& v : data) v = linear_to_srgb(unit_clamped(v * scale));
   }
   const OIIO::TypeDesc stored = as_float
                                     ? (options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)

@@ -8,12 +8,14 @@
 
 #include "core/memory_budget.hpp"
 #include "image/image_encoding.hpp"
+#include "image/png_chunks.hpp"
 
 namespace relume {
 
 ImageRowReader::ImageRowReader(const std::filesystem::path& path, const ImageReadOptions& options)
     : path_(path) {
   if (!std::filesystem::exists(path)) throw Error("image not found: " + path.string());
+  check_png_chunks(path);
   input_ = OIIO::ImageInput::open(path.string());
   if (!input_) throw Error("cannot read image " + path.string() + ": " + OIIO::geterror());
   spec_ = input_->spec();

@@ -53,9 +53,11 @@ struct SrgbTable {
 
 }  // namespace
 
+float unit_clamped(float v) { return v > 0 ? std::min(v, 1.0f) : 0.0f; }
+
 std::uint8_t srgb_code(float linear) {
   static const SrgbTable table;
-  const float v = std::clamp(linear, 0.0f, 1.0f);
+  const float v = unit_clamped(linear);
   const int bin = int(v * bins);
   return std::uint8_t(table.base[bin] + (v >= table.step[bin]));
 }

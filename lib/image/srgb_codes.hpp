@@ -12,7 +12,11 @@
 
 namespace relume {
 
-// The code of linear_to_srgb(v) in 8 bits; v is clamped to [0, 1] (NaN is refused before).
+// `v` clamped to [0, 1], NaN to 0 (std::clamp keeps NaN, which no table may be indexed with):
+// what an exposed pixel is before it is encoded.
+float unit_clamped(float v);
+
+// The code of linear_to_srgb(v) in 8 bits; v is unit_clamped first (NaN and -Inf: 0, +Inf: 255).
 std::uint8_t srgb_code(float linear);
 
 }  // namespace relume

@@ -10,6 +10,8 @@
 #include <relume/lighting.hpp>
 #include <string>
 
+#include "core/text_numbers.hpp"
+
 namespace relume {
 namespace {
 
@@ -24,11 +26,14 @@ double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+// Where the squared norm overflows or underflows, scaled before it is squared (Eigen's stable
+// norm): (1, 1e308, 1) once became a zero direction, and (1e-320, 0, 0) "zero".
 Eigen::Vector3d unit_direction(const Eigen::Vector3d& direction, const std::string& what) {
-  if (!direction.allFinite() || !(direction.norm() > 0))
-    throw Error(what + " (" + std::to_string(direction.x()) + ", " + std::to_string(direction.y()) +
-                ", " + std::to_string(direction.z()) + ") is zero or not finite");
-  return direction.normalized();
+  if (!direction.allFinite() || !(direction.stableNorm() > 0))
+    throw Error(what + " (" + number_text(direction.x()) + ", " + number_text(direction.y()) +
+                ", " + number_text(direction.z()) + ") is zero or not finite");
+  const double norm = direction.norm();
+  return std::isnormal(norm) ? Eigen::Vector3d(direction / norm) : direction.stableNormalized();
 }
 
 }  // namespace
@@ -158,10 +163,10 @@ Eigen::VectorXd LightInterpolation::weights(const Eigen::Vector3d& direction,
 }
 
 LightRgb LightInterpolation::light_vector(const DirectionalLight& light) const {
-  if (!light.rgb.allFinite() || (light.rgb.array() < 0).any())
-    throw Error("light colour (" + std::to_string(light.rgb.x()) + ", " +
-                std::to_string(light.rgb.y()) + ", " + std::to_string(light.rgb.z()) +
-                ") must be three finite non-negative numbers");
+  if (!(light.rgb.array() >= 0 && light.rgb.array() <= max_light_color).all())
+    throw Error("light colour (" + number_text(light.rgb.x()) + ", " + number_text(light.rgb.y()) +
+                ", " + number_text(light.rgb.z()) + ") must be three non-negative numbers up to " +
+                number_text(max_light_color));
   const Eigen::VectorXd w = weights(light.direction, light.spread_degrees);
   LightRgb rgb(lights_, 3);
   for (int i = 0; i < lights_; ++i) rgb.row(i) = (w[i] * light.rgb).transpose().cast<float>();

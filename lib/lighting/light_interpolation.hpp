@@ -31,6 +31,9 @@
 
 namespace relume {
 
+// The largest colour component of a moved light: keeps relit floats far from overflow.
+inline constexpr double max_light_color = 1e6;
+
 struct DirectionalLight {
   Eigen::Vector3d direction{0, 0, 1};  // towards the light, camera frame; need not be unit
   Eigen::Vector3d rgb{1, 1, 1};        // colour and intensity: 1 = one captured light's
@@ -48,10 +51,12 @@ class LightInterpolation {
   Eigen::VectorXd weights(const Eigen::Vector3d& direction, double spread_degrees = 0) const;
 
   // weights(light.direction, light.spread_degrees) times light.rgb: the light vector to relight
-  // with. Throws Error for a non-finite or negative colour, as well as for what weights refuses.
+  // with. Throws Error for a colour component that is not a number from 0 to max_light_color, as
+  // well as for what weights refuses.
   LightRgb light_vector(const DirectionalLight& light) const;
 
-  // True when a triangle holds `direction` (unit), false when it takes the rim's weights.
+  // True when a triangle holds `direction` (any length, normalized here), false when it takes the
+  // rim's weights.
   bool covers(const Eigen::Vector3d& direction) const;
 
   const SphereTriangulation& triangulation() const { return triangulation_; }

@@ -171,7 +171,7 @@ void check_residual_values(const CompressedField& field, const std::string& wher
     }
 }
 
-void check_dark(const CompressedField& field, const std::string& where) {
+void check_dark_pixels(const CompressedField& field, const std::string& where) {
   const std::uint64_t pixels = std::uint64_t(field.width) * field.height;
   std::size_t row = 0;
   for (std::size_t d = 0; d < field.dark_pixels.size(); ++d) {
@@ -186,6 +186,9 @@ void check_dark(const CompressedField& field, const std::string& where) {
       throw Error(where + ": dark pixel " + std::to_string(q) + " also has " +
                   stored_row_name(row) + ", expected a pixel to be stored or dark, not both");
   }
+}
+
+void check_dark_values(const CompressedField& field, const std::string& where) {
   const std::size_t expected =
       field.dark_pixels.empty() ? 0 : std::size_t(field.channels) * field.lights;
   if (field.dark.size() != expected)
@@ -226,7 +229,8 @@ void validate_compressed_field(const CompressedField& field, const std::string& 
   check_residual_offsets(field, context);
   check_residual_indices(field, context);
   check_residual_values(field, context);
-  check_dark(field, context);
+  check_dark_pixels(field, context);
+  check_dark_values(field, context);
   check_dark_gains(field, context);
 }
 

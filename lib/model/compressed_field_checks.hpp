@@ -40,10 +40,12 @@ void check_residual_indices(const CompressedField& field, const std::string& whe
 // Finite values, each row sorted by |value| descending. Needs valid offsets.
 void check_residual_values(const CompressedField& field, const std::string& where);
 
-// Dark pixels strictly ascending, below width x height, inside the mask and without stored rows;
-// channels x lights finite dark values when any pixel is dark (none otherwise). Needs valid
-// functions and mask.
-void check_dark(const CompressedField& field, const std::string& where);
+// Dark pixels strictly ascending, below width x height, inside the mask and without stored rows.
+// Needs valid functions and mask.
+void check_dark_pixels(const CompressedField& field, const std::string& where);
+// Channels x lights finite dark values when any pixel is dark (none otherwise). A container keeps
+// them in a section of their own, which `where` names.
+void check_dark_values(const CompressedField& field, const std::string& where);
 // The dark gains: none, or one per dark pixel and channel, finite, >= 0, with a finite step > 0.
 // (The container writer also needs them equal within each block: model/dark_gains.hpp.)
 void check_dark_gains(const CompressedField& field, const std::string& where);

@@ -2,7 +2,8 @@
 NumPy evaluation of R ~ W F + E needs; relighting (CPU reference and OpenCL, whole and batched,
 with a residual cap, under a light moved by light_dir=) equals `relume relight` and that
 evaluation; reconstruct equals `relume decompress`; export_npz writes what `relume export` does;
-save and open round-trip; and bad input raises relume errors."""
+save and open round-trip; and bad input (exposures and light colours out of range among it) raises
+relume errors."""
 import json
 import os
 
@@ -222,6 +223,58 @@ def test_bad_relight_input_raises_relume_errors(compressed, light):
         compressed.relight(light, device="no-such-device")
     with pytest.raises(relume.Error, match=r"lights must have shape \(count, 40, 3\)"):
         compressed.relight_batch(light)
+
+
+def test_exposures_and_light_colours_out_of_range_raise_relume_errors(compressed, tmp_path):
+    # The background relights to 0, which 2**128 (Inf in float) once made NaN: a crash in the
+    # 8-bit encoder. Such exposures, and colours that overflow relit floats, are refused.
+    relit = compressed.relight(light_dir=(0, 0, 1))
+    for exposure in (128, -41, float("nan"), float("inf")):
+        with pytest.raises(relume.Error, match=r"stops is out of range \(from -40 to 40\)"):
+            relume.write_image(tmp_path / "x.png", relit, exposure=exposure)
+        assert not (tmp_path / "x.png").exists()
+    relume.write_image(tmp_path / "x.png", relit, exposure=40)
+    assert relume.read_image(tmp_path / "x.png").min() == 0
+    with pytest.raises(relume.Error, match=r"non-negative numbers up to 1e\+06"):
+        compressed.relight(light_dir=(0, 0, 1), color=(1e7, 1, 1))
+
+
+# Edges (0, range limits, the largest doubles, overflow, inf and nan) and random magnitudes.
+NUMBER_EDGES = (0.0, -0.0, 1.0, -1.0, 0.5, 40.0, 40.5, -41.0, 90.0, 91.0, 128.0, 1e-30, 1e-320,
+                1e6, 1e7, 1e38, 1e39, 1e308, -1e308, float("inf"), float("-inf"), float("nan"))
+
+
+def random_number(rng):
+    if rng.random() < 0.5:
+        return NUMBER_EDGES[rng.integers(len(NUMBER_EDGES))]
+    return float(rng.choice((-1, 1)) * 10.0 ** rng.uniform(-12, 12))
+
+
+def test_random_numbers_in_every_numeric_argument_relight_or_raise_relume_errors(compressed,
+                                                                                  tmp_path):
+    # Property (fixed seed): each numeric argument of relight, and write_image's exposure, given a
+    # random number either gives finite pixels or raises relume.Error; none crashes.
+    rng = np.random.default_rng(35)
+    arguments = ("light_dir", "color", "spread", "residual", "exposure")
+    for case in range(40):
+        name = arguments[case % len(arguments)]
+        call = {"light_dir": (0.0, 0.3, 1.0)}
+        if name in ("light_dir", "color"):
+            call[name] = tuple(random_number(rng) for _ in range(3))
+        elif name == "spread":
+            call[name] = random_number(rng)
+        elif name == "residual":
+            value = random_number(rng)
+            call[name] = int(value) if np.isfinite(value) and abs(value) < 2**31 else -1
+        try:
+            relit = compressed.relight(**call, reference=case % 2 == 1)
+            assert relit.shape[:2] == (compressed.height, compressed.width)
+            assert np.isfinite(relit).all()
+            if name == "exposure":
+                relume.write_image(tmp_path / "x.png", relit, exposure=random_number(rng))
+                assert relume.read_image(tmp_path / "x.png").shape[:2] == relit.shape[:2]
+        except relume.Error:
+            pass
 
 
 def test_bad_files_raise_file_errors(saved, tmp_path):

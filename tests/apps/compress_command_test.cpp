@@ -1,6 +1,7 @@
 // Tests of `relume compress` (run as a command on fields written to disk) and of the checkpoints
 // it resumes from: containers and reports are written, a failing input does not stop the others,
-// and a resumed clustering continues where the checkpoint left it.
+// clusters beyond what the functions fill are warned of and their merging said, and a resumed
+// clustering continues where the checkpoint left it.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -103,6 +104,37 @@ TEST(CompressCommand, WritesAContainerAndAReport) {
   ASSERT_EQ(exact.exit_code, 0) << exact.output;
   EXPECT_FALSE(read_json(dir / "float.json").contains("precision_cost")) << "float32 costs nothing";
   EXPECT_FALSE(read_container(dir / "float.relume").quantization.any());
+}
+
+// More clusters than the functions fill were seeded without a word and merged without one
+// (--clusters 2048 ended with 243): the run says so before seeding, and the summary says how many
+// clusters remain of those asked and why.
+TEST(CompressCommand, ClustersTheFunctionsCannotFillAreWarnedOfAndTheirMergingSaid) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(1));
+  const auto result =
+      testing::run_relume("compress --noise-floor 0 '" + (dir / "field").string() + "' -o '" +
+                          (dir / "out.relume").string() +
+                          "' --clusters 100 --terms 2 --residual 1 --threads 2 --report '" +
+                          (dir / "report.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("100 clusters are more than 288 functions can fill (clusters with "
+                               "fewer than 8 functions are merged into others): at most 36 will "
+                               "remain"),
+            std::string::npos)
+      << result.output;
+  const nlohmann::json report = read_json(dir / "report.json");
+  const int clusters = report["parameters"]["clusters"].get<int>();
+  int merged = 0;
+  for (const auto& iteration : report["clustering"]["iterations"])
+    merged += iteration["merged"].get<int>();
+  EXPECT_LE(clusters, 36);
+  EXPECT_GT(merged, 0);
+  EXPECT_NE(result.output.find(", " + std::to_string(clusters) + " clusters of the 100 asked (" +
+                               std::to_string(merged) +
+                               " merged into others for having fewer than 8 functions), "),
+            std::string::npos)
+      << result.output;
 }
 
 // Without residual the planted spike of every function stays as a per-light error: the report

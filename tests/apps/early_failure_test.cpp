@@ -1,7 +1,8 @@
 // Tests that the commands refuse bad options and unusable outputs before any long work (the
 // input here does not exist, so any check that ran after loading would report that instead), name
 // the output rather than its checkpoint, bound --threads and the sizes of synth, sky and factor,
-// refuse work above --memory-limit with the numbers, and keep exit 2 for usage errors.
+// refuse work above --memory-limit with the numbers, and keep exit 2 for usage errors (non-finite
+// numbers and targets of 0 among them).
 #include <fstream>
 
 #include "support/test_support.hpp"
@@ -49,6 +50,51 @@ TEST_F(EarlyFailure, CompressChecksOptionsAndOutputsBeforeLoading) {
   EXPECT_THAT(run.output,
               HasSubstr("folder " + (dir_ / "no/such/folder").string() + " does not exist"));
   EXPECT_THAT(run.output, Not(HasSubstr("checkpoint")));
+}
+
+// `-o plainfile/x.relume` said that the folder did not exist; `-o /proc/x.relume` failed only
+// after loading, naming the checkpoint.
+TEST_F(EarlyFailure, CompressNamesAFileForAFolderAndAFolderThatTakesNoFiles) {
+  std::ofstream(dir_ / "plainfile") << "a file";
+  auto run = run_relume("compress " + at("missing-field") + " -o " + at("plainfile/x.relume") +
+                        " --assign cpu");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr((dir_ / "plainfile").string() + " is a file, not a folder"));
+  EXPECT_THAT(run.output, Not(HasSubstr("does not exist")));
+  run = run_relume("compress " + at("missing-field") + " -o /proc/x.relume --assign cpu");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.output, HasSubstr("cannot write /proc/x.relume: folder /proc is not writable"));
+  EXPECT_THAT(run.output, Not(HasSubstr("not found")));
+  EXPECT_THAT(run.output, Not(HasSubstr("checkpoint")));
+}
+
+// inf, nan and overflowing values were taken by CLI11 like numbers (`sky --sun-elevation inf`
+// wrote a map without a sun), and a target of 0 was taken as no target.
+TEST_F(EarlyFailure, NonFiniteNumbersAndTargetsOfZeroAreUsageErrorsNamingTheOption) {
+  struct Case {
+    std::string arguments, message;
+  };
+  const std::string compress = "compress " + at("missing-field") + " -o " + at("out.relume");
+  for (const Case& c :
+       {Case{"sky -o " + at("sky.exr") + " --sun-elevation inf",
+             "--sun-elevation: must be a finite number, got 'inf'"},
+        Case{"sky -o " + at("sky.exr") + " --sun-elevation -NaN",
+             "--sun-elevation: must be a finite number, got '-NaN'"},
+        Case{compress + " --light-weighting 1e999",
+             "--light-weighting: must be a finite number, got '1e999'"},
+        Case{compress + " --noise-floor nan", "--noise-floor: must be a finite number, got 'nan'"},
+        Case{"relight " + at("missing.relume") + " --light-dir 0,inf,1 -o " + at("x.png"),
+             "--light-dir: must be a finite number, got 'inf'"},
+        Case{compress + " --target-bytes-per-pixel 0",
+             "--target-bytes-per-pixel: must be > 0, got '0'"},
+        Case{compress + " --target-bytes 0", "--target-bytes: must be > 0, got '0'"},
+        Case{compress + " --target-psnr -3", "--target-psnr: must be > 0, got '-3'"},
+        Case{compress + " --target-error 0", "--target-error: must be > 0, got '0'"}}) {
+    const auto run = run_relume(c.arguments);
+    EXPECT_EQ(run.exit_code, 2) << c.arguments << "\n" << run.output;
+    EXPECT_THAT(run.output, HasSubstr(c.message)) << c.arguments;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "sky.exr"));
 }
 
 TEST_F(EarlyFailure, RelightChecksTheDeviceAndOutputBeforeReading) {

@@ -2,7 +2,8 @@
 // scene: masks mean the same everywhere (relight of a folder applies its mask.png, --no-mask keeps
 // the background, --mask FILE works for folders and .lp captures in compress and relight,
 // compare --mask compares inside only), and compress's summary line leads with the error over
-// what is stored, and the input encoding is decided once and said.
+// what is stored, the input encoding is decided once and said, and an image given as the field is
+// named as one.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -208,6 +209,31 @@ TEST_F(FieldInputCommands, CompareWithAMaskComparesInsideOnly) {
   EXPECT_NEAR(report["relative_squared_error"].get<double>(), 0.01, 1e-6);
   EXPECT_NEAR(report["max_abs_difference"].get<double>(), 0.1, 1e-6);
   EXPECT_EQ(report["values"], width / 2 * height * 3);
+}
+
+// An image given as the field was read as an .lp file ("expected the light count ..., found
+// '\x89PNG'"): it is named as an image, with the folder to give instead.
+TEST_F(FieldInputCommands, AnImageGivenAsTheFieldIsNamedAsOneWithTheFolderToGive) {
+  std::ifstream names(path("scene/filenames.txt"));
+  std::string first;
+  std::getline(names, first);
+  const std::string image = path("scene/" + first);
+  for (const std::string& command :
+       {"compress '" + image + "' -o '" + path("image-as-field.relume") + "'",
+        "relight '" + image + "' --lights '" + path("lights.txt") + "' -o '" +
+            path("image-as-field.exr") + "'"}) {
+    const auto result = testing::run_relume(command);
+    EXPECT_EQ(result.exit_code, 1) << command << "\n" << result.output;
+    EXPECT_NE(result.output.find(image + " is an image, not a reflectance field: give the folder "
+                                         "of the light images (DiLiGenT's layout, with "
+                                         "light_directions.txt: " +
+                                 path("scene") + " if that is it) or an RTI .lp file"),
+              std::string::npos)
+        << result.output;
+    EXPECT_EQ(result.output.find("light count"), std::string::npos) << result.output;
+  }
+  EXPECT_FALSE(fs::exists(path("image-as-field.relume")));
+  EXPECT_FALSE(fs::exists(path("image-as-field.exr")));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // nothing is overwritten silently (-y/--overwrite, before or after the command's name; decompress
 // refuses a non-empty folder; outputs are checked before any work), a batch compress refuses
 // inputs whose containers would collide, PNG/TIFF at 8 or 16 bits and EXR at half or float,
-// --exposure auto, and frame patterns with %d or #### from --start-number.
+// --exposure auto (and any exposure noted as unused for floats), and frame patterns with %d or #### from --start-number.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -155,6 +155,22 @@ double lit_percentile(const Image& image) {
   const auto at = lit.begin() + std::ptrdiff_t(0.99 * double(lit.size() - 1));
   std::nth_element(lit.begin(), at, lit.end());
   return *at;
+}
+
+// An exposure given for a float output was ignored without a word; it is noted before the work,
+// and the floats are written unexposed.
+TEST_F(OutputOptions, AnExposureForAFloatOutputIsNotedAndLeavesItUnexposed) {
+  const auto exposed = run_or_fail(relight_to("exposed.exr") + " --exposure 2");
+  EXPECT_NE(exposed.output.find("--exposure 2 leaves " + path("exposed.exr") +
+                                " unexposed: it is written as linear floats (the exposure "
+                                "applies to integer outputs: PNG, JPEG, TIFF with --bits)"),
+            std::string::npos)
+      << exposed.output;
+  const auto plain = run_or_fail(relight_to("plain.exr"));
+  EXPECT_EQ(plain.output.find("unexposed"), std::string::npos) << plain.output;
+  EXPECT_EQ(read_image(path("exposed.exr")).pixels, read_image(path("plain.exr")).pixels);
+  EXPECT_EQ(run_or_fail(relight_to("exposed.png") + " --exposure 2").output.find("unexposed"),
+            std::string::npos);
 }
 
 TEST_F(OutputOptions, AutoExposureMapsTheLitObjectsPercentileToNinetyPercent) {

@@ -4,6 +4,7 @@
 // residual cap trades accuracy, sequence frames equal single relights, and bad input is refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -131,6 +132,43 @@ TEST_F(RelightCommands, BadInputIsRefusedWithAMessageAndNoOutput) {
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("short.txt"), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(path("short.exr")));
+}
+
+// Black pixels (a masked background) under 2^128 became NaN and indexed the sRGB table (a
+// segfault, exit 139). Exposures and light colours out of range are usage errors naming
+// the option and the value; the largest exposure allowed still writes.
+TEST_F(RelightCommands, ExposuresAndLightColoursOutOfRangeAreRefusedNamingThem) {
+  const std::string relight_scene = "-y relight '" + path("scene.relume") + "' --light-dir 0,0,1 ";
+  for (const char* exposure : {"128", "-41", "1e400", "nan"})
+    for (const char* renderer : {"", "--cpu "}) {
+      const auto result = testing::run_relume(relight_scene + renderer + "--exposure " + exposure +
+                                              " -o '" + path("exposed.png") + "'");
+      EXPECT_EQ(result.exit_code, 2) << exposure << "\n" << result.output;
+      EXPECT_NE(result.output.find("--exposure must be a number of stops from -40 to 40"),
+                std::string::npos)
+          << result.output;
+      EXPECT_NE(result.output.find(std::string("got '") + exposure + "'"), std::string::npos)
+          << result.output;
+      EXPECT_FALSE(fs::exists(path("exposed.png")));
+    }
+  const auto sequence = testing::run_relume(
+      "relight-sequence '" + path("scene.relume") + "' --light-orbit 55 --frames 2 --exposure 200" +
+      " -o '" + path("orbit/####.png") + "'");
+  EXPECT_EQ(sequence.exit_code, 2) << sequence.output;
+  EXPECT_NE(sequence.output.find("got '200'"), std::string::npos) << sequence.output;
+
+  const auto colour = testing::run_relume(relight_scene + "--light-color 1e7,1,1 -o '" +
+                                          path("coloured.png") + "'");
+  EXPECT_EQ(colour.exit_code, 1) << colour.output;
+  EXPECT_NE(colour.output.find("light colour (1e+07, 1, 1) must be three non-negative numbers up "
+                               "to 1e+06"),
+            std::string::npos)
+      << colour.output;
+
+  const Image exposed = relight(path("scene.relume"), "--light-dir 0,0,1 --exposure 40",
+                                "exposed.png");
+  EXPECT_EQ(*std::min_element(exposed.pixels.begin(), exposed.pixels.end()), 0.0f);
+  EXPECT_EQ(*std::max_element(exposed.pixels.begin(), exposed.pixels.end()), 1.0f);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // Tests of relight-sequence --video: the video is decoded here with FFmpeg's libraries, as a
 // player does (demux, decode with the flush at the end, YUV to RGB), and every frame is the
 // picture the PNG frames of the same run hold, up to the codec's loss; the default H.264 and
-// MPEG-4 part 2 in Matroska; refused targets; no half-written file after a failure.
+// MPEG-4 part 2 in Matroska; an odd frame size noted; refused targets; no half-written file after
+// a failure.
 extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
@@ -123,6 +124,28 @@ TEST_F(VideoOutput, MpegFourInMatroskaOnRequest) {
   EXPECT_EQ(video.codec, "mpeg4");
   ASSERT_EQ(video.frames.size(), 8u);
   EXPECT_GT(lowest_psnr(video), 26);
+}
+
+// 4:2:0 chroma needs even sizes: a 64 x 43 field lost its last row without a word.
+TEST_F(VideoOutput, AnOddFrameSizeIsEncodedOneRowShorterWithANote) {
+  run_or_fail("synth -o '" + path("odd") + "' --size 64x43 --lights 30 --samples 1");
+  run_or_fail("compress '" + path("odd") + "' -o '" + path("odd.relume") +
+              "' --clusters 3 --terms 2 --residual 3");
+  const auto result = run_or_fail("relight-sequence '" + path("odd.relume") +
+                                  "' --light-orbit 30 --frames 2 --video '" + path("odd.mp4") +
+                                  "'");
+  EXPECT_NE(result.output.find("video " + path("odd.mp4") +
+                               ": frames of 64x43 are encoded as 64x42 (its chroma needs even "
+                               "sizes): the last row is left out; the image frames keep it"),
+            std::string::npos)
+      << result.output;
+  const DecodedVideo video = decode(path("odd.mp4"));
+  EXPECT_EQ(video.frames.size(), 2u);
+  EXPECT_EQ(video.width, 64);
+  EXPECT_EQ(video.height, 42);
+  EXPECT_EQ(run_or_fail(sequence() + "--video '" + path("even.mp4") + "'")
+                .output.find("encoded as"),
+            std::string::npos);
 }
 
 TEST_F(VideoOutput, BadTargetsAreRefusedBeforeAnyWork) {

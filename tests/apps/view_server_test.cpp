@@ -2,7 +2,8 @@
 // container on a free port (--port 0) and asked with cpp-httplib's client: /info describes the
 // container; frames equal the Relighter's image of the same light and `relume relight`'s output
 // with the same settings (directional light, maps, rotation, exposure, residual cap); the error
-// and mask views hold what they say; bad parameters get 400 naming them, unknown paths 404, a
+// and mask views hold what they say; bad parameters (random numbers in every numeric one among
+// them) get 400 naming them, unknown paths 404, a
 // request flood 429, and none of them stops the server; SIGINT and SIGTERM stop it with the
 // command's exit status.
 #include <fcntl.h>
@@ -21,6 +22,7 @@
 #include "container/container.hpp"
 #include "image/image_difference.hpp"
 #include "lighting/light_interpolation.hpp"
+#include "support/number_samples.hpp"
 #include "support/test_support.hpp"
 // After Eigen: httplib.h brings in <resolv.h>, whose _res macro breaks Eigen's headers.
 #include <httplib.h>
@@ -358,6 +360,36 @@ TEST_F(ViewServer, BadRequestsGet400NamingTheParameterAndTheServerStaysUp) {
   ASSERT_TRUE(info);
   EXPECT_EQ(info->status, 200);
   EXPECT_EQ(frame("/frame", ".png").width, 24) << "the server still renders";
+}
+
+// Property: a random number (an edge such as 0, 1e400, inf or nan, or a random magnitude of
+// either sign; fixed seed) in each numeric parameter gets a frame or a 400 naming the
+// parameter, never a failure of the server, which still answers afterwards.
+TEST_F(ViewServer, RandomNumbersInEveryNumericParameterGetAFrameOrA400) {
+  start({"--env", path("sky.exr"), "--max-requests", "1000"});
+  struct Parameter {
+    std::string name;
+    int numbers;
+    std::string needs;
+  };
+  const std::vector<Parameter> parameters = {
+      {"light", 3, ""},        {"color", 3, "light=0,0.3,1&"}, {"spread", 1, "light=0,0.3,1&"},
+      {"rotate", 1, ""},       {"map", 1, ""},                 {"exposure", 1, ""},
+      {"residual", 1, ""},
+  };
+  testing::NumberSamples samples(37);
+  for (int request = 0; request < 56; ++request) {
+    const Parameter& parameter = parameters[std::size_t(request) % parameters.size()];
+    const std::string value = parameter.numbers == 3 ? samples.next_triple() : samples.next();
+    const std::string target = "/frame?" + parameter.needs + parameter.name + "=" + value +
+                               (request % 2 ? "&format=exr" : "");
+    const httplib::Result result = get(target);
+    ASSERT_TRUE(result) << target;
+    EXPECT_TRUE(result->status == 200 || result->status == 400) << target << ": " << result->status;
+    if (result->status == 400)
+      EXPECT_THAT(result->body, ::testing::HasSubstr(parameter.name + "=")) << target;
+  }
+  EXPECT_EQ(get("/info")->status, 200) << server_->log();
 }
 
 TEST_F(ViewServer, ServesThePageAndItsFiles) {

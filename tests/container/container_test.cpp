@@ -12,7 +12,7 @@
 #include <relume/image.hpp>
 
 #include "container/container_bytes.hpp"
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 #include "container/section_coding.hpp"
 #include "core/atomic_file.hpp"
 #include "field/npy.hpp"

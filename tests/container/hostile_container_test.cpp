@@ -2,8 +2,11 @@
 // 65536 x 65535 pixels (the mask's runs are valid, its size is not), a field at the pixel limit
 // under a small memory budget, a zero-length light direction, and a zstd section whose table
 // claims more than any frame of its size can decode to. Each is refused by name before anything
-// of the claimed size is allocated.
+// of the claimed size is allocated. A stored size of 2^49 is named as running past the file's end
+// (not as a wrapped ratio), and a NaN dark value is named in section 'dark'.
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <relume/error.hpp>
 
 #include "container/container.hpp"
@@ -21,9 +24,11 @@ using ::testing::HasSubstr;
 
 // A container of `width` x `height` one-channel pixels, one light, nothing stored (an all-outside
 // mask): every section valid, written with the real frame code. `header_keys` are added to (or
-// replace keys of) its header.
+// replace keys of) its header. With a `dark` value, every pixel is inside the mask and dark, and
+// the dark model of the one light and channel is that value.
 std::string crafted_container(std::int64_t width, std::int64_t height, const float direction[3],
-                              const nlohmann::json& header_keys = nlohmann::json::object()) {
+                              const nlohmann::json& header_keys = nlohmann::json::object(),
+                              std::optional<float> dark = std::nullopt) {
   nlohmann::json header = {{"width", width},
                            {"height", height},
                            {"channels", 1},
@@ -50,10 +55,19 @@ std::string crafted_container(std::int64_t width, std::int64_t height, const flo
   for (int c = 0; c < 3; ++c) lights.f32(1.0f);
   const std::uint64_t pixels = std::uint64_t(width * height);
   // Run-length sets: one absent run over everything (no pixel inside, none dark).
-  ByteWriter mask, functions, dark_pixels;
+  ByteWriter mask, functions, dark_pixels, dark_values;
   for (ByteWriter* set : {&mask, &functions, &dark_pixels}) {
     set->u8(1);
     set->varint(pixels);
+  }
+  if (dark) {  // one absent run of 0, then every pixel present
+    mask = ByteWriter(), dark_pixels = ByteWriter();
+    for (ByteWriter* set : {&mask, &dark_pixels}) {
+      set->u8(1);
+      set->varint(0);
+      set->varint(pixels);
+    }
+    dark_values.f32(*dark);
   }
   std::vector<StoredSection> sections;
   for (std::string_view name : container_section_names(container_format_version)) {
@@ -63,6 +77,7 @@ std::string crafted_container(std::int64_t width, std::int64_t height, const flo
     if (name == "mask") section.raw = mask.data();
     if (name == "functions") section.raw = functions.data();
     if (name == "dark_pixels") section.raw = dark_pixels.data();
+    if (name == "dark") section.raw = dark_values.data();
     sections.push_back(section);
   }
   return assemble_container(sections, /*entropy_coding=*/false, /*threads=*/1, nullptr);
@@ -121,6 +136,44 @@ TEST(HostileContainer, ZstdSectionsCannotClaimMoreThanAFrameDecodesTo) {
   const CodedSection coded = code_section(zeros, 1);
   ASSERT_TRUE(coded.coding.zstd);
   EXPECT_EQ(decode_section(coded.bytes, coded.coding, zeros.size(), "zeros"), zeros);
+}
+
+// The coded-size check multiplied the stored size by 32768: from 2^49 bytes the product wrapped,
+// and the table was said to claim too much for its coded size. The truth is that the section runs
+// past the end of the file.
+TEST(HostileContainer, AStoredSizeOfTwoToTheFortyNineIsASectionPastTheEndOfTheFile) {
+  const SectionCoding zstd{true, SectionFilter::none, 1};
+  EXPECT_NO_THROW(check_coded_size(1ull << 49, 1ull << 62, zstd, "f: section 'w'"));
+  EXPECT_NO_THROW(check_coded_size(~0ull, ~0ull, zstd, "f: section 'w'"));
+
+  std::string bytes = crafted_container(7, 5, up);
+  ParsedContainer parsed = parse_container(bytes, "huge.relume");
+  std::size_t mask = 0;
+  while (parsed.layout.sections[mask].name != "mask") ++mask;
+  parsed.layout.sections[mask].bytes = 1ull << 49;
+  parsed.codings[mask] = zstd;
+  const std::string preamble = encode_preamble(parsed.layout, parsed.codings);
+  bytes.replace(0, preamble.size(), preamble);
+  const std::string message = error_message([&] { parse_container(bytes, "huge.relume"); });
+  EXPECT_THAT(message, HasSubstr("huge.relume is truncated: section 'mask' needs bytes " +
+                                 std::to_string(parsed.layout.sections[mask].offset) + " to "));
+  EXPECT_THAT(message, HasSubstr("the file has " + std::to_string(bytes.size())));
+  EXPECT_THAT(message, ::testing::Not(HasSubstr("cannot decode")));
+}
+
+// A NaN among the dark values was reported in section 'dark_pixels', which holds only positions.
+TEST(HostileContainer, ANonFiniteDarkValueIsNamedInTheDarkSection) {
+  const CompressedField field =
+      decode_container(crafted_container(16, 8, up, nlohmann::json::object(), 0.25f), "d.relume");
+  EXPECT_EQ(field.dark_pixels.size(), 128u);
+  EXPECT_EQ(field.dark, std::vector<float>{0.25f});
+  EXPECT_EQ(error_message([&] {
+              decode_container(
+                  crafted_container(16, 8, up, nlohmann::json::object(), std::nanf("")),
+                  "d.relume");
+            }),
+            "d.relume: section 'dark': the dark value of channel 0 light 0 is nan, expected "
+            "finite");
 }
 
 }  // namespace

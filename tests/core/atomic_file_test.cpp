@@ -2,7 +2,8 @@
 // handler) while a file is written keeps the previous file and leaves no temporary; a second
 // signal unlinks the registered temporary and exits 130; stale temporaries of dead processes are
 // removed by the next write; folders are written whole or not at all; a full disk (a file-size
-// limit) is an Error naming the target; output locations are checked before any work.
+// limit) is an Error naming the target; output locations are checked before any work (a file
+// where a folder should be, and a folder that takes no files, are named).
 #include "core/atomic_file.hpp"
 
 #include <signal.h>
@@ -156,6 +157,21 @@ TEST(AtomicFileFaults, OutputLocationsAreCheckedBeforeWork) {
               HasSubstr("is not a folder"));
   EXPECT_NO_THROW(check_output_folder_location(dir / "new" / "deeper"));
   EXPECT_NO_THROW(check_output_file_location(dir / "x.exr"));
+  EXPECT_THAT(temporaries(dir.path()), ::testing::IsEmpty()) << "the probe files are removed";
+}
+
+// `-o plainfile/x.relume` said that the folder did not exist; `-o /proc/x.relume` passed (access()
+// lets root write anywhere) and failed after the field was loaded.
+TEST(AtomicFileFaults, AFileForAFolderAndAFolderThatTakesNoFilesAreNamed) {
+  testing::TempDir dir;
+  write_text(dir / "plainfile", "");
+  EXPECT_EQ(testing::error_message([&] { check_output_file_location(dir / "plainfile" / "x.relume"); }),
+            "cannot write " + (dir / "plainfile" / "x.relume").string() + ": " +
+                (dir / "plainfile").string() + " is a file, not a folder");
+  EXPECT_THAT(testing::error_message([] { check_output_file_location("/proc/x.relume"); }),
+              HasSubstr("cannot write /proc/x.relume: folder /proc is not writable ("));
+  EXPECT_THAT(testing::error_message([] { check_output_folder_location("/proc/out"); }),
+              HasSubstr("cannot write the folder /proc/out: folder /proc is not writable ("));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // Tests of the 8-bit sRGB table (image/srgb_codes.hpp): it gives the code OpenImageIO stores for
 // linear_to_srgb(v), for floats spread over [0, 1] and for every float around every step of the
 // code, and an 8-bit PNG written through it decodes to the values the curve written as floats
-// (OpenImageIO converting them) gives.
+// (OpenImageIO converting them) gives. NaN and Inf give the end codes, and writes refuse
+// exposures beyond 40 stops.
 #include "image/srgb_codes.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -9,6 +10,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
+#include <relume/error.hpp>
 #include <relume/image.hpp>
 
 #include "support/test_support.hpp"
@@ -44,6 +48,43 @@ TEST(SrgbCodes, EqualTheCurveEverywhereItSteps) {
   EXPECT_EQ(mismatches, 0u);
   EXPECT_EQ(srgb_code(-3.0f), 0);
   EXPECT_EQ(srgb_code(7.5f), 255);
+}
+
+// 0 x 2^128 is NaN: the table once took it for a bin index (a crash under --exposure 128).
+TEST(SrgbCodes, NonFiniteValuesGiveTheEndCodesInsteadOfAnIndexFromNothing) {
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(srgb_code(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(srgb_code(-std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(srgb_code(-inf), 0);
+  EXPECT_EQ(srgb_code(inf), 255);
+  EXPECT_EQ(srgb_code(0.0f * inf), 0);
+  EXPECT_EQ(unit_clamped(std::numeric_limits<float>::quiet_NaN()), 0.0f);
+  EXPECT_EQ(unit_clamped(inf), 1.0f);
+  EXPECT_EQ(unit_clamped(0.25f), 0.25f);
+}
+
+// A black pixel under an exposure of 128 stops (2^128 is Inf in float) wrote NaN codes: such an
+// exposure is refused, naming it, in 8 and 16 bits; the largest one allowed writes black as 0.
+TEST(SrgbCodes, WritesRefuseExposuresBeyondFortyStopsAndKeepBlackAtTheLimit) {
+  const testing::TempDir folder;
+  Image image(4, 2, 3);
+  image.pixels[5] = 0.5f;
+  for (const double exposure : {128.0, -200.0, double(NAN), double(INFINITY)})
+    for (const int bits : {8, 16}) {
+      try {
+        write_image(folder / "x.png", image, {exposure, bits, false});
+        ADD_FAILURE() << "exposure " << exposure << " was written";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("exposure"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("out of range (from -40 to 40)"), std::string::npos)
+            << e.what();
+      }
+      EXPECT_FALSE(std::filesystem::exists(folder / "x.png"));
+    }
+  write_image(folder / "x.png", image, {max_exposure_stops, 8, false});
+  const Image written = read_image(folder / "x.png");
+  EXPECT_EQ(written.pixels[0], 0.0f);
+  EXPECT_EQ(written.pixels[5], 1.0f);
 }
 
 TEST(SrgbCodes, APngThroughTheTableDecodesAsTheCurveWrittenAsFloats) {

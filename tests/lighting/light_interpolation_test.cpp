@@ -200,6 +200,18 @@ TEST(LightInterpolation, RealLightSetsTriangulateWithEveryLightACorner) {
   }
 }
 
+// (1, 1e308, 1) overflowed to an infinite norm and a zero direction (a 500 from the viewer), and
+// (1e-320, 0, 0) underflowed to "zero": they point along +y and +x.
+TEST(LightInterpolation, DirectionsOfExtremeMagnitudePointWhereTheyPoint) {
+  const LightInterpolation interpolation(cube_directions());
+  const auto expect_near = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-12) << a.transpose() << "\n" << b.transpose();
+  };
+  expect_near(interpolation.weights({1, 1e308, 1}), interpolation.weights({0, 1, 0}));
+  expect_near(interpolation.weights({-1e308, 1e308, 0}), interpolation.weights({-1, 1, 0}));
+  expect_near(interpolation.weights({1e-320, 0, 0}), interpolation.weights({1, 0, 0}));
+}
+
 TEST(LightInterpolation, BadInputIsRefused) {
   const LightDirections cube = cube_directions();
   const LightInterpolation interpolation(cube);

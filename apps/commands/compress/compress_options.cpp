@@ -2,6 +2,8 @@
 // clusters are found, how it is stored, the targets, and the run.
 #include "commands/compress/compress_options.hpp"
 
+#include "options/finite_numbers.hpp"
+
 namespace relume {
 namespace {
 
@@ -139,17 +141,21 @@ void add_storage_options(CLI::App& command, CompressOptions& options) {
 void add_target_options(CLI::App& command, CompressOptions& options) {
   command.add_option("--target-error", options.target_error,
                      "Choose terms, clusters and per-function residual lengths that reach this "
-                     "relative error (paper Eq. 16, masked functions) with the fewest bytes");
+                     "relative error (paper Eq. 16, masked functions) with the fewest bytes")
+      ->check(positive_number());
   command.add_option("--target-bytes", options.target_bytes,
                      "Rate control: choose terms, clusters and the residual entries kept "
                      "for the lowest error (Eq. 16) in a container of at most N bytes; the "
-                     "report's rate_target lists every point tried");
+                     "report's rate_target lists every point tried")
+      ->check(positive_number());
   command.add_option("--target-bytes-per-pixel", options.target_bytes_per_pixel,
                      "Rate control as --target-bytes, for B bytes per pixel of the frame "
-                     "(B x width x height bytes), e.g. 0.5");
+                     "(B x width x height bytes), e.g. 0.5")
+      ->check(positive_number());
   command.add_option("--target-psnr", options.target_psnr,
                      "Rate control: the smallest container whose 8-bit PSNR (dB, over "
-                     "--target-region; --psnr-white) reaches DB, e.g. 40");
+                     "--target-region; --psnr-white) reaches DB, e.g. 40")
+      ->check(positive_number());
   command
       .add_option("--target-region", options.target_region,
                   "Where --target-psnr is measured: frame (every pixel) or mask (inside "

@@ -155,6 +155,7 @@ const CommandRegistration registration{
                        "Rotate the map about +y, degrees")
           ->capture_default_str();
       command->add_option("--exposure", arguments->exposure, "Exposure of the PNG images, stops")
+          ->check(CLI::Range(-max_exposure_stops, max_exposure_stops))
           ->capture_default_str();
       command
           ->add_option("--frames", arguments->options.frames,

@@ -40,6 +40,9 @@ namespace relume {
 namespace {
 namespace fs = std::filesystem;
 
+// --frames 2147483647 made as many light vectors before the first frame: memory ran out.
+constexpr int max_sequence_frames = 100000;
+
 void run_sequence(const SequenceOptions& options) {
   if (options.output_pattern.empty() && options.video.empty())
     throw Error("give -o PATTERN (frame images), --video FILE, or both");
@@ -53,7 +56,6 @@ void run_sequence(const SequenceOptions& options) {
     VideoWriter::check_target(options.video, options.video_codec);
   }
   if (options.batch < 1) throw Error("--batch must be at least 1");
-  if (options.frames < 1) throw Error("--frames must be at least 1");
   check_renderer_options(options.renderer);
   check_new_output(options.report);
   if (!options.report.empty()) check_output_file_location(options.report);
@@ -197,7 +199,10 @@ const CommandRegistration registration{
       command->add_option("--layout", options->layout, "Map layout: auto, latlong, angular, cross")
           ->capture_default_str();
       command
-          ->add_option("--frames", options->frames, "Frames to render with --env or --light-orbit")
+          ->add_option("--frames", options->frames,
+                       "Frames to render with --env or --light-orbit (at most 100000, over an hour "
+                       "at 24 frames/s: every frame's light is made before the first is relit)")
+          ->check(CLI::Range(1, max_sequence_frames))
           ->capture_default_str();
       add_rotation_option(*command, options->rotate_start,
                           "Rotation of the first frame in degrees: the map's about +y, or the "

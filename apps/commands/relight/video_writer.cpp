@@ -17,6 +17,7 @@ extern "C" {
 #include <vector>
 
 #include "core/console.hpp"
+#include "image/srgb_codes.hpp"
 
 namespace relume {
 namespace fs = std::filesystem;
@@ -126,6 +127,14 @@ VideoWriter::VideoWriter(const fs::path& path, int width, int height, int frames
   if (s.width < 2 || s.height < 2)
     throw Error("video " + path.string() + ": frames of " + std::to_string(width) + "x" +
                 std::to_string(height) + " are too small");
+  // 4:2:0 chroma needs even sizes: an odd last row or column was left out without a word.
+  if (s.width != width || s.height != height)
+    note("video %s: frames of %dx%d are encoded as %dx%d (its chroma needs even sizes): the last "
+         "%s left out; the image frames keep it",
+         path.string().c_str(), width, height, s.width, s.height,
+         s.width != width && s.height != height ? "row and column are"
+         : s.height != height                   ? "row is"
+                                                : "column is");
   if (frames_per_second < 1 || frames_per_second > 240)
     throw Error("video frame rate must be 1 to 240, got " + std::to_string(frames_per_second));
   // FFmpeg's own messages (libx264's statistics) only when verbose; errors come back as codes.
@@ -197,7 +206,7 @@ void VideoWriter::add_frame(const Image& image, double exposure) {
     for (int x = 0; x < s.width; ++x)
       for (int c = 0; c < 3; ++c) {
         const float linear = image.at(x, y, image.channels >= 3 ? c : 0) * scale;
-        const float encoded = linear_to_srgb(std::clamp(linear, 0.0f, 1.0f));
+        const float encoded = linear_to_srgb(unit_clamped(linear));
         s.rgb[(std::size_t(y) * s.width + x) * 3 + c] =
             static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
       }

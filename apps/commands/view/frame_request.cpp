@@ -2,11 +2,11 @@
 #include "commands/view/frame_request.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <iterator>
 #include <vector>
 
 #include "core/text_numbers.hpp"
+#include "lighting/light_interpolation.hpp"
 #include "options/renderer_options.hpp"
 
 namespace relume {
@@ -26,12 +26,6 @@ constexpr const char* view_names[] = {"image", "error", "mask"};
 
 const char* const known_parameters[] = {"light",    "rotate",   "map",    "color", "spread",
                                         "exposure", "residual", "format", "view"};
-
-std::string text_of(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
 
 BadRequest bad_value(const std::string& name, const std::string& value, const std::string& why) {
   return BadRequest(name + "=" + value + ": " + why);
@@ -67,7 +61,7 @@ double number(const std::string& name, const std::string& text) {
 double number_in(const std::string& name, const std::string& text, double low, double high) {
   const double value = number(name, text);
   if (value < low || value > high)
-    throw bad_value(name, text, "expected a number from " + text_of(low) + " to " + text_of(high));
+    throw bad_value(name, text, "expected a number from " + number_text(low) + " to " + number_text(high));
   return value;
 }
 
@@ -120,7 +114,7 @@ FrameLight parse_light(const Parameters& parameters, const FrameLight& defaults,
   if (const std::string* color = find(parameters, "color")) {
     light.color = triple("color", *color);
     if (light.color.minCoeff() < 0 || light.color.maxCoeff() > max_light_color)
-      throw bad_value("color", *color, "expected components from 0 to " + text_of(max_light_color));
+      throw bad_value("color", *color, "expected components from 0 to " + number_text(max_light_color));
   }
   if (const std::string* spread = find(parameters, "spread")) {
     if (!light.direction)

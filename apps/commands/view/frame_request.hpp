@@ -61,11 +61,6 @@ struct FrameLimits {
   int maps = 0;
 };
 
-// The largest exposure magnitude in stops: 2^40 still scales a float pixel finitely.
-inline constexpr double max_exposure_stops = 40;
-// The largest light colour component: keeps relit floats far from overflow.
-inline constexpr double max_light_color = 1e6;
-
 // The parameters (as HTTP gives them: a name may repeat) over `defaults`. Throws BadRequest.
 FrameRequest parse_frame_request(const std::multimap<std::string, std::string>& parameters,
                                  const FrameRequest& defaults, const FrameLimits& limits);

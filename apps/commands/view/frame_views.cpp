@@ -21,7 +21,9 @@ constexpr std::array<Colour, 5> error_ramp = {{{0.05f, 0.05f, 0.35f},
 
 // The linear colour of a relative error (> 0) on the ramp.
 Colour ramp_colour(double relative) {
-  const double position = std::clamp(std::log10(relative) + 4.0, 0.0, 4.0);
+  // NaN (a NaN pixel's error) takes the ramp's first colour rather than an index from nothing.
+  const double level = std::log10(relative) + 4.0;
+  const double position = level > 0 ? std::min(level, 4.0) : 0.0;
   const int low = std::min(int(position), 3);
   const float t = float(position - low);
   Colour colour;

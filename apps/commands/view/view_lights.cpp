@@ -34,7 +34,7 @@ LightRgb ViewLights::light_vector(const FrameLight& light) const {
 }
 
 bool ViewLights::covers(const Eigen::Vector3d& direction) const {
-  return interpolation_ && interpolation_->covers(direction.normalized());
+  return interpolation_ && interpolation_->covers(direction);
 }
 
 }  // namespace relume

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "commands/view/viewer.hpp"
+#include "lighting/light_interpolation.hpp"
 
 namespace relume {
 

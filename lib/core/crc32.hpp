@@ -1,5 +1,6 @@
 // CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320, the checksum of zlib and PNG), used to
-// check every section of a .relume container. CRC-32 of "123456789" is 0xCBF43926.
+// check every section of a .relume container and every chunk of a PNG before it is decoded.
+// CRC-32 of "123456789" is 0xCBF43926.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // Table-driven CRC-32 (one byte per step), table built at compile time.
-#include "container/crc32.hpp"
+#include "core/crc32.hpp"
 
 #include <array>
 
