@@ -1,0 +1,161 @@
+// field_data.js: fetches what `relume publish` wrote (manifest.json, data/field.bin, the tiles
+// data/tiles/L/C_R.bin and the maps data/env/N.bin: lib/publish/web_layout.hpp and
+// web_bundle.hpp) and unpacks it into the flat arrays the renderer uploads as textures.
+import { decompress } from './fzstd.js';
+
+const arrayTypes = {
+  uint8: Uint8Array, uint16: Uint16Array, uint32: Uint32Array, int16: Int16Array,
+  float32: Float32Array, med16: Uint16Array,
+};
+
+async function fetchOk(path, base) {
+  const response = await fetch(new URL(path, base));
+  if (!response.ok) throw new Error(`${path}: ${response.status} ${response.statusText}`);
+  return response;
+}
+
+export async function fetchManifest(base) {
+  const manifest = await (await fetchOk('manifest.json', base)).json();
+  if (manifest.format !== 'relume-web' || manifest.version !== 1)
+    throw new Error(`manifest.json is ${manifest.format} version ${manifest.version} ` +
+                    '(this page reads relume-web version 1)');
+  return manifest;
+}
+
+// Undoes the container's section filters (lib/container/section_coding.cpp): 1 byte shuffle,
+// 2 delta of elements modulo 2^(8 size) then shuffle.
+function unfilter(bytes, filter, size) {
+  if (filter === 0 || size === 1 && filter === 1) return bytes;
+  const count = bytes.length / size, out = new Uint8Array(bytes.length);
+  for (let b = 0; b < size; ++b)
+    for (let i = 0; i < count; ++i) out[i * size + b] = bytes[b * count + i];
+  if (filter === 2) {
+    const view = new DataView(out.buffer);
+    if (size === 1) for (let i = 1; i < count; ++i) out[i] = (out[i] + out[i - 1]) & 0xff;
+    else if (size === 2)
+      for (let i = 1; i < count; ++i)
+        view.setUint16(i * 2, view.getUint16(i * 2, true) + view.getUint16(i * 2 - 2, true), true);
+    else if (size === 4)
+      for (let i = 1; i < count; ++i)
+        view.setUint32(i * 4, view.getUint32(i * 4, true) + view.getUint32(i * 4 - 4, true), true);
+    else throw new Error(`delta filter over ${size}-byte elements`);
+  } else if (filter !== 1) throw new Error(`unknown section filter ${filter}`);
+  return out;
+}
+
+// A bundle's arrays by name, as typed arrays. `arrays`: the manifest's [{name, type}] for it.
+export async function fetchBundle(path, arrays, base) {
+  const buffer = await (await fetchOk(path, base)).arrayBuffer();
+  const header = new DataView(buffer);
+  const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
+  if (magic !== 'RLWB' || header.getUint32(4, true) !== 1 ||
+      header.getUint32(8, true) !== arrays.length)
+    throw new Error(`${path} is not a relume-web bundle of ${arrays.length} arrays`);
+  let offset = 12 + arrays.length * 12;
+  const result = {};
+  arrays.forEach(({ name, type }, k) => {
+    const word = header.getUint32(12 + k * 12, true);
+    const coded = header.getUint32(16 + k * 12, true), raw = header.getUint32(20 + k * 12, true);
+    const Type = arrayTypes[type];
+    if (offset + coded > buffer.byteLength || raw % Type.BYTES_PER_ELEMENT !== 0)
+      throw new Error(`${path}: array ${name} does not fit the file`);
+    let bytes = new Uint8Array(buffer, offset, coded);
+    offset += coded;
+    if ((word & 0xff) === 1) bytes = decompress(bytes, new Uint8Array(raw));
+    else if (coded !== raw) throw new Error(`${path}: array ${name} is damaged`);
+    bytes = unfilter(bytes, (word >> 8) & 0xff, (word >> 16) & 0xff);
+    result[name] = new Type(bytes.slice().buffer);
+  });
+  return { arrays: result, bytes: buffer.byteLength };
+}
+
+function forEachSetBit(bits, visit) {
+  let ordinal = 0;
+  for (let byte = 0; byte < bits.length; ++byte) {
+    const value = bits[byte];
+    if (value === 0) continue;
+    for (let bit = 0; bit < 8; ++bit)
+      if (value & (1 << bit)) visit(byte * 8 + bit, ordinal++);
+  }
+}
+
+// The median edge detector's prediction (lib/container/weight_prediction.cpp) from the left,
+// upper and upper-left rows' weights (-1: no row).
+function predicted(weights, terms, j, left, up, upLeft) {
+  const at = (row) => weights[row * terms + j];
+  if (left >= 0 && up >= 0) {
+    const a = at(left), b = at(up);
+    const c = upLeft >= 0 ? at(upLeft) : Math.trunc((a + b) / 2);
+    if (c >= Math.max(a, b)) return Math.min(a, b);
+    if (c <= Math.min(a, b)) return Math.max(a, b);
+    return a + b - c;
+  }
+  if (left >= 0) return at(left);
+  if (up >= 0) return at(up);
+  return 0;
+}
+
+// The arrays of one tile (width x height pixels) the renderer uploads: per pixel its stored row
+// per channel (-1 none, -2 - d dark pixel d), per row its cluster and residual span, weights and
+// residual values as floats, per dark pixel its gains.
+export function unpackTile(field, width, height, a) {
+  const { channels, terms } = field;
+  const pixels = width * height;
+  const pixelRows = new Int32Array(pixels * 4).fill(-1);
+  const rowFunction = new Uint32Array(a.clusters.length);
+  forEachSetBit(a.stored_functions, (f, row) => {
+    pixelRows[Math.floor(f / channels) * 4 + (f % channels)] = row;
+    rowFunction[row] = f;
+  });
+  let darkCount = 0;
+  if (a.dark_pixels)
+    forEachSetBit(a.dark_pixels, (q, d) => {
+      pixelRows.fill(-2 - d, q * 4, q * 4 + channels);
+      darkCount = d + 1;
+    });
+
+  const rows = a.clusters.length;
+  const rowInfo = new Uint32Array(rows * 4);
+  let first = 0;
+  for (let r = 0; r < rows; ++r) {
+    rowInfo[r * 4] = a.clusters[r];
+    rowInfo[r * 4 + 1] = first;
+    rowInfo[r * 4 + 2] = a.residual_lengths[r];
+    first += a.residual_lengths[r];
+  }
+
+  let w = a.weights;
+  if (w instanceof Uint16Array) {  // med16: undo the prediction, in row order
+    const integers = new Int32Array(w.length);
+    const rowAt = (x, y, c) => (x < 0 || y < 0 ? -1 : pixelRows[(y * width + x) * 4 + c]);
+    for (let r = 0; r < rows; ++r) {
+      const f = rowFunction[r], c = f % channels, pixel = Math.floor(f / channels);
+      const x = pixel % width, y = Math.floor(pixel / width);
+      const left = rowAt(x - 1, y, c), up = rowAt(x, y - 1, c), upLeft = rowAt(x - 1, y - 1, c);
+      for (let j = 0; j < terms; ++j) {
+        const i = r * terms + j;
+        integers[i] = ((w[i] + predicted(integers, terms, j, left, up, upLeft)) << 16) >> 16;
+      }
+    }
+    w = Float32Array.from(integers, (q) => Math.fround(q * field.weight_step));
+  }
+  const termTexels = Math.max(1, Math.ceil(terms / 4));
+  const weights = new Float32Array(Math.max(1, rows * termTexels * 4));
+  for (let r = 0; r < rows; ++r)
+    for (let j = 0; j < terms; ++j) weights[r * termTexels * 4 + j] = w[r * terms + j];
+
+  const entries = a.residual_values.length, step = field.residual_step;
+  const residual = new Float32Array(Math.max(2, entries * 2));
+  for (let e = 0; e < entries; ++e) {
+    const value = a.residual_values[e];
+    residual[e * 2] = step > 0 ? Math.fround(value * step) : value;
+    residual[e * 2 + 1] = a.residual_lights[e];
+  }
+
+  const darkGains = new Float32Array(Math.max(1, darkCount) * 4).fill(1);
+  if (a.dark_gains)
+    for (let d = 0; d < darkCount; ++d)
+      for (let c = 0; c < channels; ++c)
+        darkGains[d * 4 + c] = Math.fround(a.dark_gains[d * channels + c] * field.dark_gain_step);
+  return { width, height, pixelRows, rowInfo, weights, termTexels, residual, darkGains };
+}
