@@ -236,6 +236,11 @@ TEST_F(PublishedPage, ResidualOptionCutsTheRowsItPublishes) {
       run_relume("publish '" + path("masked.relume") + "' -o '" + path("cut_site") + "'");
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_THAT(refused.output, ::testing::HasSubstr("cut_site"));
+  // -y replaces the site, its data folder whole.
+  run_or_fail("publish '" + path("masked.relume") + "' -o '" + path("cut_site") + "' -y");
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(fs::path(path("cut_site")) / "manifest.json"))
+                ["field"]["residual_longest_row"],
+            6);
 }
 
 }  // namespace
