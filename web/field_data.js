@@ -1,7 +1,7 @@
 // field_data.js: fetches what `relume publish` wrote (manifest.json, data/field.bin, the tiles
 // data/tiles/L/C_R.bin and the maps data/env/N.bin: lib/publish/web_layout.hpp and
-// web_bundle.hpp) and unpacks it into the flat arrays the renderer uploads as textures.
-import { decompress } from './fzstd.js';
+// web_bundle.hpp), inflates and unfilters their arrays, and unpacks a tile into the flat arrays
+// the renderer uploads as textures.
 
 const arrayTypes = {
   uint8: Uint8Array, uint16: Uint16Array, uint32: Uint32Array, int16: Int16Array,
@@ -22,28 +22,46 @@ export async function fetchManifest(base) {
   return manifest;
 }
 
-// Undoes the container's section filters (lib/container/section_coding.cpp): 1 byte shuffle,
-// 2 delta of elements modulo 2^(8 size) then shuffle.
+// Undoes the container's section filters (lib/container/section_coding.cpp) on elements of
+// `size` bytes: 1 byte shuffle, 2 delta of elements modulo 2^(8 size) then shuffle. Returns a
+// typed array of unsigned elements over its own buffer.
 function unfilter(bytes, filter, size) {
-  if (filter === 0 || size === 1 && filter === 1) return bytes;
-  const count = bytes.length / size, out = new Uint8Array(bytes.length);
-  for (let b = 0; b < size; ++b)
-    for (let i = 0; i < count; ++i) out[i * size + b] = bytes[b * count + i];
-  if (filter === 2) {
-    const view = new DataView(out.buffer);
-    if (size === 1) for (let i = 1; i < count; ++i) out[i] = (out[i] + out[i - 1]) & 0xff;
-    else if (size === 2)
-      for (let i = 1; i < count; ++i)
-        view.setUint16(i * 2, view.getUint16(i * 2, true) + view.getUint16(i * 2 - 2, true), true);
-    else if (size === 4)
-      for (let i = 1; i < count; ++i)
-        view.setUint32(i * 4, view.getUint32(i * 4, true) + view.getUint32(i * 4 - 4, true), true);
-    else throw new Error(`delta filter over ${size}-byte elements`);
-  } else if (filter !== 1) throw new Error(`unknown section filter ${filter}`);
+  const count = bytes.length / size;
+  if (filter > 2) throw new Error(`unknown section filter ${filter}`);
+  if (size === 1) {
+    const out = filter === 0 ? bytes.slice() : bytes;
+    if (filter === 2) for (let i = 1; i < count; ++i) out[i] = (out[i] + out[i - 1]) & 0xff;
+    return out;
+  }
+  if (filter === 0) return new (size === 2 ? Uint16Array : Uint32Array)(bytes.slice().buffer);
+  if (size === 2) {
+    const out = new Uint16Array(count);
+    let previous = 0;
+    for (let i = 0; i < count; ++i) {
+      const value = bytes[i] | (bytes[count + i] << 8);
+      out[i] = previous = filter === 2 ? (previous + value) & 0xffff : value;
+    }
+    return out;
+  }
+  if (size !== 4) throw new Error(`a section of ${size}-byte elements`);
+  const out = new Uint32Array(count);
+  let previous = 0;
+  for (let i = 0; i < count; ++i) {
+    const value = (bytes[i] | (bytes[count + i] << 8) | (bytes[2 * count + i] << 16) |
+                   (bytes[3 * count + i] << 24)) >>> 0;
+    out[i] = previous = filter === 2 ? (previous + value) >>> 0 : value;
+  }
   return out;
 }
 
-// A bundle's arrays by name, as typed arrays. `arrays`: the manifest's [{name, type}] for it.
+// Raw deflate (RFC 1951), decoded by the browser itself.
+async function inflate(bytes) {
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw'));
+  return new Uint8Array(await new Response(stream).arrayBuffer());
+}
+
+// A bundle's arrays by name, as typed arrays, and its bytes. `arrays`: the manifest's
+// [{name, type}] for it.
 export async function fetchBundle(path, arrays, base) {
   const buffer = await (await fetchOk(path, base)).arrayBuffer();
   const header = new DataView(buffer);
@@ -53,19 +71,20 @@ export async function fetchBundle(path, arrays, base) {
     throw new Error(`${path} is not a relume-web bundle of ${arrays.length} arrays`);
   let offset = 12 + arrays.length * 12;
   const result = {};
-  arrays.forEach(({ name, type }, k) => {
+  await Promise.all(arrays.map(async ({ name, type }, k) => {
     const word = header.getUint32(12 + k * 12, true);
     const coded = header.getUint32(16 + k * 12, true), raw = header.getUint32(20 + k * 12, true);
     const Type = arrayTypes[type];
-    if (offset + coded > buffer.byteLength || raw % Type.BYTES_PER_ELEMENT !== 0)
-      throw new Error(`${path}: array ${name} does not fit the file`);
-    let bytes = new Uint8Array(buffer, offset, coded);
+    const start = offset;
     offset += coded;
-    if ((word & 0xff) === 1) bytes = decompress(bytes, new Uint8Array(raw));
-    else if (coded !== raw) throw new Error(`${path}: array ${name} is damaged`);
-    bytes = unfilter(bytes, (word >> 8) & 0xff, (word >> 16) & 0xff);
-    result[name] = new Type(bytes.slice().buffer);
-  });
+    if (offset > buffer.byteLength || raw % Type.BYTES_PER_ELEMENT !== 0)
+      throw new Error(`${path}: array ${name} does not fit the file`);
+    let bytes = new Uint8Array(buffer, start, coded);
+    if ((word & 0xff) === 2) bytes = await inflate(bytes);
+    if (bytes.length !== raw) throw new Error(`${path}: array ${name} is damaged`);
+    const elements = unfilter(bytes, (word >> 8) & 0xff, Type.BYTES_PER_ELEMENT);
+    result[name] = new Type(elements.buffer, elements.byteOffset, elements.length);
+  }));
   return { arrays: result, bytes: buffer.byteLength };
 }
 
@@ -137,7 +156,8 @@ export function unpackTile(field, width, height, a) {
         integers[i] = ((w[i] + predicted(integers, terms, j, left, up, upLeft)) << 16) >> 16;
       }
     }
-    w = Float32Array.from(integers, (q) => Math.fround(q * field.weight_step));
+    w = new Float32Array(integers.length);
+    for (let i = 0; i < integers.length; ++i) w[i] = integers[i] * field.weight_step;
   }
   const termTexels = Math.max(1, Math.ceil(terms / 4));
   const weights = new Float32Array(Math.max(1, rows * termTexels * 4));
@@ -148,7 +168,7 @@ export function unpackTile(field, width, height, a) {
   const residual = new Float32Array(Math.max(2, entries * 2));
   for (let e = 0; e < entries; ++e) {
     const value = a.residual_values[e];
-    residual[e * 2] = step > 0 ? Math.fround(value * step) : value;
+    residual[e * 2] = step > 0 ? value * step : value;
     residual[e * 2 + 1] = a.residual_lights[e];
   }
 
