@@ -115,8 +115,9 @@ function predicted(weights, terms, j, left, up, upLeft) {
 }
 
 // The arrays of one tile (width x height pixels) the renderer uploads: per pixel its stored row
-// per channel (-1 none, -2 - d dark pixel d), per row its cluster and residual span, weights and
-// residual values as floats, per dark pixel its gains.
+// per channel (-1 none, -2 - d dark pixel d), per row its cluster and residual span, the weights
+// and residual values as stored (16-bit integers times the field's steps, or floats), the
+// residual's lights, per dark pixel its gains.
 export function unpackTile(field, width, height, a) {
   const { channels, terms } = field;
   const pixels = width * height;
@@ -143,9 +144,10 @@ export function unpackTile(field, width, height, a) {
     first += a.residual_lengths[r];
   }
 
-  let w = a.weights;
-  if (w instanceof Uint16Array) {  // med16: undo the prediction, in row order
-    const integers = new Int32Array(w.length);
+  // Quantized weights (med16): the prediction undone in row order, kept as integers.
+  let weights = a.weights;
+  if (weights instanceof Uint16Array) {
+    const integers = new Int32Array(weights.length);
     const rowAt = (x, y, c) => (x < 0 || y < 0 ? -1 : pixelRows[(y * width + x) * 4 + c]);
     for (let r = 0; r < rows; ++r) {
       const f = rowFunction[r], c = f % channels, pixel = Math.floor(f / channels);
@@ -153,23 +155,10 @@ export function unpackTile(field, width, height, a) {
       const left = rowAt(x - 1, y, c), up = rowAt(x, y - 1, c), upLeft = rowAt(x - 1, y - 1, c);
       for (let j = 0; j < terms; ++j) {
         const i = r * terms + j;
-        integers[i] = ((w[i] + predicted(integers, terms, j, left, up, upLeft)) << 16) >> 16;
+        integers[i] = ((weights[i] + predicted(integers, terms, j, left, up, upLeft)) << 16) >> 16;
       }
     }
-    w = new Float32Array(integers.length);
-    for (let i = 0; i < integers.length; ++i) w[i] = integers[i] * field.weight_step;
-  }
-  const termTexels = Math.max(1, Math.ceil(terms / 4));
-  const weights = new Float32Array(Math.max(1, rows * termTexels * 4));
-  for (let r = 0; r < rows; ++r)
-    for (let j = 0; j < terms; ++j) weights[r * termTexels * 4 + j] = w[r * terms + j];
-
-  const entries = a.residual_values.length, step = field.residual_step;
-  const residual = new Float32Array(Math.max(2, entries * 2));
-  for (let e = 0; e < entries; ++e) {
-    const value = a.residual_values[e];
-    residual[e * 2] = step > 0 ? value * step : value;
-    residual[e * 2 + 1] = a.residual_lights[e];
+    weights = Int16Array.from(integers);
   }
 
   const darkGains = new Float32Array(Math.max(1, darkCount) * 4).fill(1);
@@ -177,5 +166,8 @@ export function unpackTile(field, width, height, a) {
     for (let d = 0; d < darkCount; ++d)
       for (let c = 0; c < channels; ++c)
         darkGains[d * 4 + c] = Math.fround(a.dark_gains[d * channels + c] * field.dark_gain_step);
-  return { width, height, pixelRows, rowInfo, weights, termTexels, residual, darkGains };
+  return {
+    width, height, pixelRows, rowInfo, weights, darkGains,
+    residualValues: a.residual_values, residualLights: a.residual_lights,
+  };
 }

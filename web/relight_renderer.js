@@ -15,10 +15,10 @@ function compile(gl, type, source) {
   return shader;
 }
 
-function link(gl) {
+function link(gl, fragmentSource) {
   const program = gl.createProgram();
   gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, vertexShader));
-  gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragmentShader));
+  gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragmentSource));
   gl.linkProgram(program);
   if (!gl.getProgramParameter(program, gl.LINK_STATUS))
     throw new Error(`WebGL2 program link failed: ${gl.getProgramInfoLog(program)}`);
@@ -28,16 +28,24 @@ function link(gl) {
 // Texel formats: [internal format, format, type, components, typed array].
 function formats(gl) {
   return {
+    r8ui: [gl.R8UI, gl.RED_INTEGER, gl.UNSIGNED_BYTE, 1, Uint8Array],
+    r16ui: [gl.R16UI, gl.RED_INTEGER, gl.UNSIGNED_SHORT, 1, Uint16Array],
+    r32ui: [gl.R32UI, gl.RED_INTEGER, gl.UNSIGNED_INT, 1, Uint32Array],
+    r16i: [gl.R16I, gl.RED_INTEGER, gl.SHORT, 1, Int16Array],
     rgba32i: [gl.RGBA32I, gl.RGBA_INTEGER, gl.INT, 4, Int32Array],
     rgba32ui: [gl.RGBA32UI, gl.RGBA_INTEGER, gl.UNSIGNED_INT, 4, Uint32Array],
     rgba32f: [gl.RGBA32F, gl.RGBA, gl.FLOAT, 4, Float32Array],
-    rg32f: [gl.RG32F, gl.RG, gl.FLOAT, 2, Float32Array],
     r32f: [gl.R32F, gl.RED, gl.FLOAT, 1, Float32Array],
   };
 }
 
-// The samplers of a tile (texture units 0..4) and of the whole field (5..7).
-const tileSamplers = ['pixelRows', 'rowInfo', 'weights', 'residual', 'darkGains'];
+// The one-component format of a typed array's values.
+const singleFormat = (values) => ({
+  Uint8Array: 'r8ui', Uint16Array: 'r16ui', Uint32Array: 'r32ui', Int16Array: 'r16i', Float32Array: 'r32f',
+})[values.constructor.name];
+
+// The samplers of a tile (texture units 0..5) and of the whole field (6..8).
+const tileSamplers = ['pixelRows', 'rowInfo', 'weights', 'residualValues', 'residualLights', 'darkGains'];
 const fieldSamplers = ['products', 'light', 'srgbThresholds'];
 
 export class RelightRenderer {
@@ -50,7 +58,7 @@ export class RelightRenderer {
     this.formats = formats(gl);
     this.texWidth = Math.min(4096, gl.getParameter(gl.MAX_TEXTURE_SIZE));
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-    this.program = link(gl);
+    this.program = link(gl, fragmentShader(this.field.weight_step > 0, this.field.residual_step > 0));
     gl.useProgram(this.program);
     [...tileSamplers, ...fieldSamplers].forEach((name, unit) =>
       gl.uniform1i(gl.getUniformLocation(this.program, name), unit));
@@ -63,9 +71,11 @@ export class RelightRenderer {
       srgbThresholds: this.texture('r32f', new Float32Array(manifest.srgb_thresholds), 256, 1),
     };
     for (const [name, value] of Object.entries({
-      texWidth: this.texWidth, terms, termTexels: Math.max(1, Math.ceil(terms / 4)), channels,
+      texWidth: this.texWidth, terms, channels,
     }))
       gl.uniform1i(gl.getUniformLocation(this.program, name), value);
+    gl.uniform1f(gl.getUniformLocation(this.program, 'weightStep'), this.field.weight_step);
+    gl.uniform1f(gl.getUniformLocation(this.program, 'residualStep'), this.field.residual_step);
     this.location = Object.fromEntries(
         ['cap', 'dark', 'scale', 'viewOrigin', 'viewScale', 'canvasHeight', 'stride',
          'tileOrigin', 'tileSize'].map((name) => [name, gl.getUniformLocation(this.program, name)]));
@@ -107,8 +117,9 @@ export class RelightRenderer {
       textures: [
         this.texture('rgba32i', data.pixelRows, data.width, data.height),
         this.arrayTexture('rgba32ui', data.rowInfo),
-        this.arrayTexture('rgba32f', data.weights),
-        this.arrayTexture('rg32f', data.residual),
+        this.arrayTexture(singleFormat(data.weights), data.weights),
+        this.arrayTexture(singleFormat(data.residualValues), data.residualValues),
+        this.arrayTexture(singleFormat(data.residualLights), data.residualLights),
         this.arrayTexture('rgba32f', data.darkGains),
       ],
     };
@@ -147,14 +158,14 @@ export class RelightRenderer {
 
   // Starts a frame on the current framebuffer of width x height pixels: `view` maps its pixels
   // to the field's (field = origin + pixel / scale), `cap` residual entries per function at
-  // most, exposed by `exposure` stops.
-  begin(width, height, view, cap, exposure) {
+  // most, exposed by `exposure` stops; `clear` false keeps what was drawn (to add a tile).
+  begin(width, height, view, cap, exposure, clear = true) {
     const gl = this.gl;
     this.target = { width, height, view };
     gl.viewport(0, 0, width, height);
     gl.disable(gl.SCISSOR_TEST);
     gl.clearColor(0.086, 0.094, 0.11, 1);
-    gl.clear(gl.COLOR_BUFFER_BIT);
+    if (clear) gl.clear(gl.COLOR_BUFFER_BIT);
     gl.useProgram(this.program);
     gl.uniform1i(this.location.cap, Math.max(0, Math.min(cap, 0x7fffffff)));
     gl.uniform3f(this.location.dark, ...this.dark);

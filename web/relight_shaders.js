@@ -19,7 +19,11 @@ void main() {
 }
 `;
 
-export const fragmentShader = `#version 300 es
+// The fragment program for weights and residual values stored as 16-bit integers times their
+// step (`integerWeights`, `integerResidual`: the quantized fields relume writes) or as floats.
+export const fragmentShader = (integerWeights, integerResidual) => `#version 300 es
+#define INTEGER_WEIGHTS ${integerWeights ? 1 : 0}
+#define INTEGER_RESIDUAL ${integerResidual ? 1 : 0}
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -29,14 +33,24 @@ precision highp usampler2D;
 // The tile's:
 uniform isampler2D pixelRows;  // its pixels: per channel the stored row, -1 none, -2 - d dark d
 uniform usampler2D rowInfo;    // per stored row: cluster, first residual entry, entries
-uniform sampler2D weights;     // per stored row, termTexels texels of 4 weights
-uniform sampler2D residual;    // per entry: value, light index
+#if INTEGER_WEIGHTS
+uniform isampler2D weights;    // per stored row and term: the weight / weightStep
+#else
+uniform sampler2D weights;     // per stored row and term: the weight
+#endif
+#if INTEGER_RESIDUAL
+uniform isampler2D residualValues;  // per entry: the value / residualStep
+#else
+uniform sampler2D residualValues;   // per entry: the value
+#endif
+uniform usampler2D residualLights;  // per entry: its light
 uniform sampler2D darkGains;   // per dark pixel: its gains (RGB)
 // The field's:
 uniform sampler2D products;    // per cluster and term: v[k][j] (RGB)
 uniform sampler2D light;       // per light: I in the field's basis (RGB)
 uniform sampler2D srgbThresholds;  // 256 x 1: the 8-bit sRGB codes' thresholds
-uniform int texWidth, terms, termTexels, channels, cap, canvasHeight, stride;
+uniform int texWidth, terms, channels, cap, canvasHeight, stride;
+uniform float weightStep, residualStep;
 uniform ivec2 tileOrigin, tileSize;  // in pixels of the tile's level
 uniform vec2 viewOrigin;
 uniform float viewScale;
@@ -50,19 +64,23 @@ float relightRow(int row, int c) {
   uvec4 info = texelFetch(rowInfo, at(row), 0);
   int cluster = int(info.x);
   float sum = 0.0;
-  for (int q = 0; q < termTexels; ++q) {
-    vec4 w = texelFetch(weights, at(row * termTexels + q), 0);
-    for (int l = 0; l < 4; ++l) {
-      int j = q * 4 + l;
-      if (j >= terms) break;
-      sum += w[l] * texelFetch(products, at(cluster * terms + j), 0)[c];
-    }
+  for (int j = 0; j < terms; ++j) {
+#if INTEGER_WEIGHTS
+    float w = float(texelFetch(weights, at(row * terms + j), 0).x) * weightStep;
+#else
+    float w = texelFetch(weights, at(row * terms + j), 0).x;
+#endif
+    sum += w * texelFetch(products, at(cluster * terms + j), 0)[c];
   }
   int first = int(info.y);
   int used = min(int(info.z), cap);
-  for (int e = 0; e < used; ++e) {
-    vec2 entry = texelFetch(residual, at(first + e), 0).xy;
-    sum += entry.x * texelFetch(light, at(int(entry.y)), 0)[c];
+  for (int e = first; e < first + used; ++e) {
+#if INTEGER_RESIDUAL
+    float value = float(texelFetch(residualValues, at(e), 0).x) * residualStep;
+#else
+    float value = texelFetch(residualValues, at(e), 0).x;
+#endif
+    sum += value * texelFetch(light, at(int(texelFetch(residualLights, at(e), 0).x)), 0)[c];
   }
   return sum;
 }

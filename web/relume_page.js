@@ -102,7 +102,14 @@ async function main() {
   };
 
   let lightChanged = true, pending = false, frames = [], lastFrameMs = 0, firstImage = null;
-  const pyramid = new TilePyramid(manifest, renderer, base, () => schedule(),
+  // A tile that arrives while the view stands still is drawn alone over the frame on screen.
+  const tileArrived = (level, column, row, tile) => {
+    if (pending || level !== pyramid.levelFor(view.scale)) return schedule();
+    renderer.begin(canvas.width, canvas.height, view, state.residual, state.exposure, false);
+    renderer.drawTile(tile, pyramid.levels[level].stride, column * pyramid.size, row * pyramid.size);
+    noteFirstImage(pyramid.complete(level, view, canvas.width, canvas.height));
+  };
+  const pyramid = new TilePyramid(manifest, renderer, base, tileArrived,
                                   (error) => fail('error', `Could not show the field: ${error.message}`));
   const view = { x: 0, y: 0, scale: 1 };
   const fit = () => {
@@ -137,12 +144,15 @@ async function main() {
       lastFrameMs = performance.now() - begin;
     }
     frames.push(performance.now());
-    if (complete && !firstImage) {
-      firstImage = { seconds: (performance.now() - started) / 1000, bytes: bytesOnTheWire() };
-      status.textContent = `First image in ${firstImage.seconds.toFixed(2)} s, ` +
-                           `${kilobytes(firstImage.bytes)} fetched`;
-    }
+    noteFirstImage(complete);
   };
+  function noteFirstImage(complete) {
+    if (!complete || firstImage) return;
+    renderer.finish();
+    firstImage = { seconds: (performance.now() - started) / 1000, bytes: bytesOnTheWire() };
+    status.textContent = `First image in ${firstImage.seconds.toFixed(2)} s, ` +
+                         `${kilobytes(firstImage.bytes)} fetched`;
+  }
   const pad = new LightPad($('light-pad'), manifest.light_cover.directions, (light) => {
     state.light = light;
     lightChanged = true;

@@ -7,7 +7,8 @@ import { fetchBundle, unpackTile } from './field_data.js';
 const heldTiles = 96;
 
 export class TilePyramid {
-  // onTile() is called when a fetched tile is ready to draw; onError(error) when one fails.
+  // onTile(level, column, row, tile) is called when a fetched tile is ready to draw;
+  // onError(error) when one fails.
   constructor(manifest, renderer, base, onTile, onError) {
     this.manifest = manifest;
     this.renderer = renderer;
@@ -55,7 +56,7 @@ export class TilePyramid {
                                 Math.min(this.size, height - row * this.size), arrays);
         entry.tile = this.renderer.uploadTile(data);
         entry.ready = true;
-        this.onTile();
+        this.onTile(level, column, row, entry.tile);
         return entry;
       });
       entry.promise.catch(this.onError);
@@ -70,6 +71,12 @@ export class TilePyramid {
     const { columns, rows } = this.levels[level], all = [];
     for (let r = 0; r < rows; ++r) for (let c = 0; c < columns; ++c) all.push(this.request(level, c, r).promise);
     return Promise.all(all);
+  }
+
+  // Whether every tile of `level` that the view shows is here.
+  complete(level, view, width, height) {
+    return this.visible(level, view, width, height)
+        .every(([c, r]) => this.tiles.get(`${level}/${c}/${r}`)?.ready);
   }
 
   // Draws the view (renderer.begin called) with the tiles of `level` it shows; true when all

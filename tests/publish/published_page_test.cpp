@@ -115,14 +115,15 @@ class PublishedPage : public CommandSuite {
  protected:
   static void SetUpTestSuite() {
     CommandSuite::SetUpTestSuite();
-    // Masked: the synthetic scene's object mask. Unmasked, in the Haar basis, its background
-    // stored as dark pixels (a noise floor above the scene's dark ground).
+    // Masked: the synthetic scene's object mask, quantized values. Unmasked, in the Haar basis,
+    // its background stored as dark pixels (a noise floor above the scene's dark ground), float
+    // values (the page's other shader).
     run_or_fail("synth -o '" + path("scene") + "' --size 48x40 --lights 40 --samples 1");
     run_or_fail("compress '" + path("scene") + "' -o '" + path("masked.relume") +
                 "' --clusters 4 --terms 2 --residual 6");
     run_or_fail("compress '" + path("scene") + "' -o '" + path("haar.relume") +
                 "' --no-mask --transform haar --noise-floor 0.02 --clusters 4 --terms 3 "
-                "--residual 5");
+                "--residual 5 --weights-precision float32 --residual-precision float32");
     run_or_fail("sky -o '" + path("sky.exr") + "' --width 64 --sun-radiance 200");
     run_or_fail("publish '" + path("masked.relume") + "' --env '" + path("sky.exr") + "' -o '" +
                 path("masked_site") + "' --title 'Masked scene' --tile-size 16");
