@@ -6,8 +6,10 @@
 // rotate=DEGREES (light with map N of the manifest, turned), residual=N|all, exposure=STOPS,
 // readback=1 (the whole field at full resolution is drawn off screen and its RGBA bytes, rows
 // from the top, go base64-encoded into <pre id="readback"> before <body data-state> becomes
-// "ready"; tests read them with `chromium --headless --dump-dom`). Scripts can also call
-// window.relume: fullResolutionPixels(), framesPerSecond(cap, frames), firstImage, state.
+// "ready"; tests read them with `chromium --headless --dump-dom`), workers=0 (tiles decode on
+// the page's thread: the virtual time of --dump-dom runs does not wait for workers). Scripts can
+// also call window.relume: fullResolutionPixels(), framesPerSecond(cap, frames), firstImage,
+// bytesOnTheWire(), view, state.
 import { fetchBundle, fetchManifest } from './field_data.js';
 import { LightPad } from './light_pad.js';
 import { EnvironmentLighting, LightInterpolation, lightInFieldBasis } from './light_vector.js';
@@ -40,8 +42,9 @@ function kilobytes(bytes) {
   return bytes < 1e6 ? `${(bytes / 1e3).toFixed(1)} kB` : `${(bytes / 1e6).toFixed(2)} MB`;
 }
 
-// Bytes this page has fetched so far (its HTML, modules and data), as the browser counts them.
-function bytesOnTheWire() {
+// Bytes fetched by this page's thread (its HTML, modules, manifest, field and maps), as the
+// browser counts them; the tiles' workers count theirs (TilePyramid.bytes).
+function pageBytes() {
   return performance.getEntriesByType('navigation').concat(performance.getEntriesByType('resource'))
       .reduce((sum, entry) => sum + (entry.encodedBodySize || 0), 0);
 }
@@ -110,7 +113,9 @@ async function main() {
     noteFirstImage(pyramid.complete(level, view, canvas.width, canvas.height));
   };
   const pyramid = new TilePyramid(manifest, renderer, base, tileArrived,
-                                  (error) => fail('error', `Could not show the field: ${error.message}`));
+                                  (error) => fail('error', `Could not show the field: ${error.message}`),
+                                  params.get('workers') === '0' ? 0 : undefined);
+  const bytesOnTheWire = () => pageBytes() + pyramid.bytes;
   const view = { x: 0, y: 0, scale: 1 };
   const fit = () => {
     view.scale = Math.min(canvas.width / field.width, canvas.height / field.height);

@@ -1,25 +1,26 @@
 // tile_pyramid.js: the published field's tile pyramid (lib/publish/web_layout.hpp) on the page:
-// which level and tiles a view needs, fetching each tile once when first needed, and drawing a
-// view with the tiles it has (a tile not yet arrived is stood in for by a coarser one already
-// here). Tiles far from the view are dropped when many are held.
-import { fetchBundle, unpackTile } from './field_data.js';
+// which level and tiles a view needs, fetching each tile once when first needed (decoded in Web
+// Workers, tile_decoder.js), and drawing a view with the tiles it has (a tile not yet arrived is
+// stood in for by a coarser one already here). Tiles far from the view are dropped when many are
+// held.
+import { TileDecoder } from './tile_decoder.js';
 
 const heldTiles = 96;
 
 export class TilePyramid {
   // onTile(level, column, row, tile) is called when a fetched tile is ready to draw;
-  // onError(error) when one fails.
-  constructor(manifest, renderer, base, onTile, onError) {
+  // onError(error) when one fails. workers: TileDecoder's.
+  constructor(manifest, renderer, base, onTile, onError, workers) {
     this.manifest = manifest;
     this.renderer = renderer;
-    this.base = base;
+    this.decoder = new TileDecoder(manifest, base, workers);
     this.onTile = onTile;
     this.onError = onError;
     this.size = manifest.tiles.size;
     this.levels = manifest.tiles.levels;
     this.tiles = new Map();  // "level/column/row" -> {ready, tile, used, promise}
     this.frame = 0;
-    this.bytes = 0;
+    this.bytes = 0;  // fetched by the decoder's workers, as the browser counts them
   }
 
   // The level whose pixels are nearest the screen's without being larger: field pixels per
@@ -50,11 +51,11 @@ export class TilePyramid {
       const { width, height } = this.levels[level];
       const file = this.manifest.tiles.file.replace('{level}', level).replace('{column}', column)
           .replace('{row}', row);
-      entry.promise = fetchBundle(file, this.manifest.tiles.arrays, this.base).then(({ arrays, bytes }) => {
+      const decoded = this.decoder.decode(file, Math.min(this.size, width - column * this.size),
+                                          Math.min(this.size, height - row * this.size));
+      entry.promise = decoded.then(({ tile, bytes }) => {
         this.bytes += bytes;
-        const data = unpackTile(this.manifest.field, Math.min(this.size, width - column * this.size),
-                                Math.min(this.size, height - row * this.size), arrays);
-        entry.tile = this.renderer.uploadTile(data);
+        entry.tile = this.renderer.uploadTile(tile);
         entry.ready = true;
         this.onTile(level, column, row, entry.tile);
         return entry;
