@@ -144,7 +144,7 @@ async function main() {
     const begin = performance.now();
     renderer.begin(canvas.width, canvas.height, view, state.residual, state.exposure);
     const complete = pyramid.draw(pyramid.levelFor(view.scale), view, canvas.width, canvas.height);
-    if (!$('continuous').checked) {
+    if (!$('continuous').checked && complete) {  // frames with tiles missing are not timed
       renderer.finish();
       lastFrameMs = performance.now() - begin;
     }
