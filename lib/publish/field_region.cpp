@@ -16,9 +16,8 @@ CompressedField FieldRegions::region(const FieldRegion& region, int residual_cap
   const auto last = [&](int first, int count) {
     return std::int64_t(first) + std::int64_t(region.stride) * (count - 1);
   };
-  if (region.stride < 1 || region.width < 1 || region.height < 1 || region.x < 0 ||
-      region.y < 0 || last(region.x, region.width) >= field.width ||
-      last(region.y, region.height) >= field.height)
+  if (region.stride < 1 || region.width < 1 || region.height < 1 || region.x < 0 || region.y < 0 ||
+      last(region.x, region.width) >= field.width || last(region.y, region.height) >= field.height)
     throw Error("region " + std::to_string(region.width) + " x " + std::to_string(region.height) +
                 " at (" + std::to_string(region.x) + ", " + std::to_string(region.y) +
                 "), stride " + std::to_string(region.stride) + ", lies outside the " +
@@ -41,9 +40,9 @@ CompressedField FieldRegions::region(const FieldRegion& region, int residual_cap
   const int channels = field.channels;
   for (int ry = 0; ry < region.height; ++ry)
     for (int rx = 0; rx < region.width; ++rx) {
-      const std::int64_t pixel = (std::int64_t(region.y) + std::int64_t(region.stride) * ry) *
-                                     field.width +
-                                 region.x + std::int64_t(region.stride) * rx;
+      const std::int64_t pixel =
+          (std::int64_t(region.y) + std::int64_t(region.stride) * ry) * field.width + region.x +
+          std::int64_t(region.stride) * rx;
       const std::uint32_t part_pixel = std::uint32_t(ry * region.width + rx);
       for (int c = 0; c < channels; ++c) {
         const std::int64_t row = row_of_function_[std::size_t(pixel * channels + c)];
@@ -71,8 +70,8 @@ CompressedField FieldRegions::region(const FieldRegion& region, int residual_cap
         }
       }
     }
-  part.weights = Eigen::Map<const RowMatrixF>(weights.data(), Eigen::Index(part.stored_rows()),
-                                              field.terms);
+  part.weights =
+      Eigen::Map<const RowMatrixF>(weights.data(), Eigen::Index(part.stored_rows()), field.terms);
   return part;
 }
 

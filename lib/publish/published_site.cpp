@@ -67,7 +67,8 @@ PublishReport publish_container(const std::filesystem::path& container,
         report.field_bytes += file.bytes.size();
         continue;
       }
-      if (report.level_bytes.size() <= std::size_t(file.level)) report.level_bytes.resize(file.level + 1);
+      if (report.level_bytes.size() <= std::size_t(file.level))
+        report.level_bytes.resize(file.level + 1);
       report.level_bytes[file.level] += file.bytes.size();
     }
     for (const WebEnvironment& environment : environments) {

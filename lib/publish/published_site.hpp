@@ -22,7 +22,7 @@ struct PublishOptions {
   // Residual entries kept per function (the largest; none given: all); the page's cap slider
   // ends there.
   std::optional<ResidualBudget> residual;
-  double exposure = 0;  // the page's first exposure, in stops
+  double exposure = 0;                              // the page's first exposure, in stops
   std::vector<std::filesystem::path> environments;  // maps the page offers besides the light
   int tile_size = default_tile_size;
 };
@@ -35,12 +35,12 @@ struct PublishedFile {
 struct PublishReport {
   std::vector<PublishedFile> files;  // in writing order: page, manifest, field, tiles, maps
   std::uint64_t container_bytes = 0;
-  std::uint64_t page_bytes = 0;      // web/* files
+  std::uint64_t page_bytes = 0;  // web/* files
   std::uint64_t manifest_bytes = 0;
-  std::uint64_t field_bytes = 0;     // data/field.bin
+  std::uint64_t field_bytes = 0;           // data/field.bin
   std::vector<std::uint64_t> level_bytes;  // the tiles of each pyramid level
   std::uint64_t environment_bytes = 0;     // data/env/*.bin
-  int residual_longest_row = 0;  // entries of the longest residual row kept
+  int residual_longest_row = 0;            // entries of the longest residual row kept
   std::uint64_t residual_entries = 0;
   // What a browser fetches to show the whole field at full resolution: the page, the manifest,
   // data/field.bin and the tiles of level 0 (a map adds its file when picked).

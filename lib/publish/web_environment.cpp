@@ -13,11 +13,9 @@ namespace relume {
 WebEnvironment lay_out_environment(const std::filesystem::path& path, int index) {
   const EnvironmentMap map = load_environment_map(path);
   const MapGeometry source = map.geometry();
-  const bool kept =
-      map.layout == EnvironmentLayout::latlong && source.width <= kept_latlong_width;
-  const MapGeometry grid = kept ? source
-                                : MapGeometry{EnvironmentLayout::latlong, binned_width,
-                                              binned_width / 2};
+  const bool kept = map.layout == EnvironmentLayout::latlong && source.width <= kept_latlong_width;
+  const MapGeometry grid =
+      kept ? source : MapGeometry{EnvironmentLayout::latlong, binned_width, binned_width / 2};
   std::vector<double> sums(std::size_t(grid.width) * grid.height * 3, 0.0);
   for (int y = 0; y < source.height; ++y)
     for (int x = 0; x < source.width; ++x) {

@@ -34,7 +34,8 @@ std::string id_type(std::uint64_t limit) {
 
 BundleArray id_array(const std::string& name, const std::string& type,
                      const std::vector<std::uint32_t>& ids) {
-  if (type == "uint8") return {name, type, raw_bytes(std::vector<std::uint8_t>(ids.begin(), ids.end()))};
+  if (type == "uint8")
+    return {name, type, raw_bytes(std::vector<std::uint8_t>(ids.begin(), ids.end()))};
   if (type == "uint16")
     return {name, type, raw_bytes(std::vector<std::uint16_t>(ids.begin(), ids.end()))};
   return {name, type, raw_bytes(ids)};
@@ -82,22 +83,23 @@ struct TileTypes {
 
 std::vector<BundleArray> tile_arrays(const CompressedField& part, const TileTypes& types) {
   std::vector<BundleArray> arrays;
-  arrays.push_back(bit_set("stored_functions", part.stored_function, std::uint64_t(part.functions())));
+  arrays.push_back(
+      bit_set("stored_functions", part.stored_function, std::uint64_t(part.functions())));
   arrays.push_back(id_array("clusters", types.cluster_type, part.cluster));
   const std::size_t weight_count = std::size_t(part.weights.size());
   if (types.quantized_weights) {
     // Every term counts as stored: unused terms hold zeros, which predict and code to nearly
     // nothing, and the page needs no per-cluster term table.
     const std::vector<std::uint8_t> all_terms(std::size_t(part.clusters) * part.terms, 1);
-    arrays.push_back({"weights", "med16",
-                      raw_bytes(predict_weights(
-                          part,
-                          integers(part.weights.data(), weight_count, part.quantization.weight_step),
-                          all_terms))});
+    arrays.push_back(
+        {"weights", "med16",
+         raw_bytes(predict_weights(
+             part, integers(part.weights.data(), weight_count, part.quantization.weight_step),
+             all_terms))});
   } else {
-    arrays.push_back({"weights", "float32",
-                      raw_bytes(std::vector<float>(part.weights.data(),
-                                                   part.weights.data() + weight_count))});
+    arrays.push_back(
+        {"weights", "float32",
+         raw_bytes(std::vector<float>(part.weights.data(), part.weights.data() + weight_count))});
   }
   std::vector<std::uint32_t> lengths(part.stored_rows());
   for (std::size_t r = 0; r < lengths.size(); ++r) lengths[r] = part.residual.length(r);
@@ -107,8 +109,8 @@ std::vector<BundleArray> tile_arrays(const CompressedField& part, const TileType
   if (types.quantized_residual) {
     const std::vector<std::int32_t> q =
         integers(values.data(), values.size(), part.quantization.residual_step);
-    arrays.push_back({"residual_values", "int16",
-                      raw_bytes(std::vector<std::int16_t>(q.begin(), q.end()))});
+    arrays.push_back(
+        {"residual_values", "int16", raw_bytes(std::vector<std::int16_t>(q.begin(), q.end()))});
   } else {
     arrays.push_back({"residual_values", "float32", raw_bytes(values)});
   }
@@ -118,14 +120,16 @@ std::vector<BundleArray> tile_arrays(const CompressedField& part, const TileType
   if (types.gains) {
     const std::vector<std::int32_t> q =
         integers(part.dark_gains.data(), part.dark_gains.size(), part.dark_gain_step);
-    arrays.push_back({"dark_gains", "int16", raw_bytes(std::vector<std::int16_t>(q.begin(), q.end()))});
+    arrays.push_back(
+        {"dark_gains", "int16", raw_bytes(std::vector<std::int16_t>(q.begin(), q.end()))});
   }
   return arrays;
 }
 
 nlohmann::ordered_json array_list(const std::vector<BundleArray>& arrays) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  for (const BundleArray& array : arrays) list.push_back({{"name", array.name}, {"type", array.type}});
+  for (const BundleArray& array : arrays)
+    list.push_back({{"name", array.name}, {"type", array.type}});
   return list;
 }
 
@@ -134,14 +138,14 @@ nlohmann::ordered_json array_list(const std::vector<BundleArray>& arrays) {
 WebLayout lay_out_for_web(const CompressedField& field, int residual_cap, int tile_size) {
   validate_compressed_field(field, "cannot publish the compressed field");
   check_residual_cap(residual_cap);
-  if (tile_size < 8) throw Error("the tile size must be at least 8 pixels, got " + std::to_string(tile_size));
+  if (tile_size < 8)
+    throw Error("the tile size must be at least 8 pixels, got " + std::to_string(tile_size));
 
   TileTypes types;
   types.quantized_weights = multiples_of(field.weights.data(), std::size_t(field.weights.size()),
                                          field.quantization.weight_step);
-  types.quantized_residual = multiples_of(field.residual.values.data(),
-                                          field.residual.values.size(),
-                                          field.quantization.residual_step);
+  types.quantized_residual = multiples_of(
+      field.residual.values.data(), field.residual.values.size(), field.quantization.residual_step);
   types.dark = !field.dark_pixels.empty();
   types.gains = types.dark && !field.dark_gains.empty();
   std::uint32_t longest = 0;
@@ -177,8 +181,8 @@ WebLayout lay_out_for_web(const CompressedField& field, int residual_cap, int ti
   const std::vector<float>& scales = field.quantization.basis_scales;
   bool quantized_bases = field.quantization.basis_bits > 0;
   for (std::size_t row = 0; row < scales.size() && quantized_bases; ++row)
-    quantized_bases = multiples_of(field.basis(0) + row * field.lights, std::size_t(field.lights),
-                                   scales[row]);
+    quantized_bases =
+        multiples_of(field.basis(0) + row * field.lights, std::size_t(field.lights), scales[row]);
   if (quantized_bases) {
     const std::vector<std::int32_t> q = integers_per_row(field.bases, scales, field.lights);
     globals.push_back({"bases", "int16", raw_bytes(std::vector<std::int16_t>(q.begin(), q.end()))});
@@ -195,10 +199,15 @@ WebLayout lay_out_for_web(const CompressedField& field, int residual_cap, int ti
   nlohmann::ordered_json tile_array_list;
   for (int level = 0;; ++level) {
     const int stride = 1 << level;
-    const int width = (field.width + stride - 1) / stride, height = (field.height + stride - 1) / stride;
-    const int columns = (width + tile_size - 1) / tile_size, rows = (height + tile_size - 1) / tile_size;
-    levels.push_back({{"stride", stride}, {"width", width}, {"height", height},
-                      {"columns", columns}, {"rows", rows}});
+    const int width = (field.width + stride - 1) / stride,
+              height = (field.height + stride - 1) / stride;
+    const int columns = (width + tile_size - 1) / tile_size,
+              rows = (height + tile_size - 1) / tile_size;
+    levels.push_back({{"stride", stride},
+                      {"width", width},
+                      {"height", height},
+                      {"columns", columns},
+                      {"rows", rows}});
     for (int row = 0; row < rows; ++row)
       for (int column = 0; column < columns; ++column) {
         FieldRegion region;

@@ -108,7 +108,8 @@ PageImage open_page(const std::string& chromium, const std::string& url,
     page.state = match[1];
   if (std::regex_search(dom, match, std::regex(R"re(<span id="status" role="status">([^<]*)<)re")))
     page.status = match[1];
-  if (std::regex_search(dom, match, std::regex(R"re(<pre id="readback" hidden="">([^<]*)</pre>)re")))
+  if (std::regex_search(dom, match,
+                        std::regex(R"re(<pre id="readback" hidden="">([^<]*)</pre>)re")))
     page.rgba = decode_base64(match[1]);
   return page;
 }
@@ -141,18 +142,17 @@ class PublishedPage : public CommandSuite {
     const std::string reference = path(name + "_" + std::to_string(cap) + "_" + light + ".png");
     const bool map = light.starts_with("sky@");
     const std::string degrees = map ? light.substr(4) : "";
-    run_or_fail("relight '" + path(name + ".relume") + "' " +
-                (map ? "--env '" + path("sky.exr") + "' --rotate " + degrees
-                     : "--light-dir " + light) +
-                " --residual " + std::to_string(cap) + " --exposure " + std::to_string(exposure) +
-                " -o '" + reference + "'");
+    run_or_fail(
+        "relight '" + path(name + ".relume") + "' " +
+        (map ? "--env '" + path("sky.exr") + "' --rotate " + degrees : "--light-dir " + light) +
+        " --residual " + std::to_string(cap) + " --exposure " + std::to_string(exposure) + " -o '" +
+        reference + "'");
     const Image expected = read_image(reference);
     StaticServer server(path(name + "_site"));
     const PageImage page = open_page(
         chromium, server.url("index.html?readback=1&workers=0&" +
-                             (map ? "env=0&rotate=" + degrees : "light=" + light) +
-                             "&residual=" + std::to_string(cap) +
-                             "&exposure=" + std::to_string(exposure)));
+                             (map ? "env=0&rotate=" + degrees : "light=" + light) + "&residual=" +
+                             std::to_string(cap) + "&exposure=" + std::to_string(exposure)));
     ASSERT_EQ(page.state, "ready") << page.status;
     const std::size_t pixels = std::size_t(expected.width) * expected.height;
     ASSERT_EQ(page.rgba.size(), pixels * 4);
@@ -185,7 +185,8 @@ TEST_F(PublishedPage, MaskedFieldEqualsRelightAtTwoCapsInsideAndOutsideTheCover)
 
 TEST_F(PublishedPage, MaskedFieldUnderATurnedMapEqualsRelight) {
   REQUIRE_CHROMIUM(chromium);
-  for (const char* turned : {"sky@0", "sky@130"}) expect_page_equals_relight(chromium, "masked", turned, 3, -2.0);
+  for (const char* turned : {"sky@0", "sky@130"})
+    expect_page_equals_relight(chromium, "masked", turned, 3, -2.0);
 }
 
 TEST_F(PublishedPage, HaarFieldWithDarkPixelsEqualsRelightAtTwoCaps) {
@@ -213,9 +214,9 @@ TEST_F(PublishedPage, ManifestDescribesThePyramidAndItsTiles) {
   for (std::size_t level = 0; level < levels.size(); ++level)
     for (int column = 0; column < levels[level]["columns"].get<int>(); ++column)
       for (int row = 0; row < levels[level]["rows"].get<int>(); ++row)
-        EXPECT_TRUE(fs::exists(fs::path(path("haar_site")) / "data" / "tiles" /
-                               std::to_string(level) /
-                               (std::to_string(column) + "_" + std::to_string(row) + ".bin")))
+        EXPECT_TRUE(
+            fs::exists(fs::path(path("haar_site")) / "data" / "tiles" / std::to_string(level) /
+                       (std::to_string(column) + "_" + std::to_string(row) + ".bin")))
             << "level " << level << " tile " << column << ", " << row;
   std::vector<std::string> arrays;
   for (const auto& array : manifest["tiles"]["arrays"]) arrays.push_back(array["name"]);
@@ -224,8 +225,9 @@ TEST_F(PublishedPage, ManifestDescribesThePyramidAndItsTiles) {
   EXPECT_EQ(nlohmann::json::parse(
                 std::ifstream(fs::path(path("masked_site")) / "manifest.json"))["title"],
             "Masked scene");
-  const CommandResult bad_map = run_relume("publish '" + path("masked.relume") + "' --env '" +
-                                           path("masked.relume") + "' -o '" + path("bad_site") + "'");
+  const CommandResult bad_map =
+      run_relume("publish '" + path("masked.relume") + "' --env '" + path("masked.relume") +
+                 "' -o '" + path("bad_site") + "'");
   EXPECT_NE(bad_map.exit_code, 0);
   EXPECT_FALSE(fs::exists(path("bad_site"))) << "a failed publish left a folder behind";
 }
@@ -241,8 +243,8 @@ TEST_F(PublishedPage, ResidualOptionCutsTheRowsItPublishes) {
   EXPECT_THAT(refused.output, ::testing::HasSubstr("cut_site"));
   // -y replaces the site, its data folder whole.
   run_or_fail("publish '" + path("masked.relume") + "' -o '" + path("cut_site") + "' -y");
-  EXPECT_EQ(nlohmann::json::parse(std::ifstream(fs::path(path("cut_site")) / "manifest.json"))
-                ["field"]["residual_longest_row"],
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(fs::path(path("cut_site")) /
+                                                "manifest.json"))["field"]["residual_longest_row"],
             6);
 }
 

@@ -70,9 +70,10 @@ const CommandRegistration registration{
                        "Site folder (created if missing; a non-empty one is refused unless "
                        "-y/--overwrite, which replaces files of the same names)")
           ->required();
-      command->add_option("--env", options->environments,
-                          "Environment map(s) the page offers besides the moved light, turned "
-                          "about the up axis with a slider (repeat for several)")
+      command
+          ->add_option("--env", options->environments,
+                       "Environment map(s) the page offers besides the moved light, turned "
+                       "about the up axis with a slider (repeat for several)")
           ->check(CLI::ExistingFile);
       command->add_option("--title", options->title,
                           "The page's title (default: the container's file name)");
