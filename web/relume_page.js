@@ -196,8 +196,17 @@ async function main() {
 
   for (const [index, entry] of manifest.environments.entries())
     $('lighting').add(new Option(`Map: ${entry.name}`, String(index)));
-  $('lighting').addEventListener('change', () => {
+  // Picking a map exposes it as bright as the moved light (whose weights sum to one): the
+  // exposure takes minus log2 of the light vector's mean-RGB total.
+  $('lighting').addEventListener('change', async () => {
     state.env = $('lighting').value === 'light' ? -1 : Number($('lighting').value);
+    if (state.env >= 0) {
+      const vector = (await mapLighting(state.env)).lightVector(state.rotation);
+      const total = vector.reduce((sum, v) => sum + v, 0) / 3;
+      if (total > 0) state.exposure = Math.max(-12, Math.min(12, manifest.exposure - Math.log2(total)));
+    } else {
+      state.exposure = manifest.exposure;
+    }
     lightChanged = true;
     schedule();
   });
