@@ -12,17 +12,18 @@ function(relume_add_library_parts target)
   set(embedded "${generated}/kernel_sources.cpp")
   add_custom_command(
     OUTPUT "${embedded}"
-    COMMAND ${CMAKE_COMMAND} -DKERNEL_DIR=${PROJECT_SOURCE_DIR}/kernels -DOUTPUT=${embedded}
-            -P ${PROJECT_SOURCE_DIR}/cmake/embed_kernels.cmake
-    DEPENDS ${kernel_files} ${PROJECT_SOURCE_DIR}/cmake/embed_kernels.cmake
+    COMMAND ${CMAKE_COMMAND} -DDIR=${PROJECT_SOURCE_DIR}/kernels -DPATTERN=*.cl
+            -DHEADER=opencl/kernel_sources.hpp -DFUNCTION=kernel_sources -DOUTPUT=${embedded}
+            -P ${PROJECT_SOURCE_DIR}/cmake/embed_folder.cmake
+    DEPENDS ${kernel_files} ${PROJECT_SOURCE_DIR}/cmake/embed_folder.cmake
     COMMENT "Embedding OpenCL kernels")
+  target_sources(${target} PRIVATE "${embedded}")
   # Runs at every build; rewrites the header only when the commit changed.
   add_custom_target(relume_git_commit
     COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
             -DOUTPUT=${generated}/relume_git_commit.hpp -P ${PROJECT_SOURCE_DIR}/cmake/git_commit.cmake
     BYPRODUCTS "${generated}/relume_git_commit.hpp"
     COMMENT "Recording the git commit")
-  target_sources(${target} PRIVATE "${embedded}")
   add_dependencies(${target} relume_git_commit)
   target_include_directories(${target} PRIVATE "${generated}")
   set_source_files_properties("${PROJECT_SOURCE_DIR}/lib/core/version.cpp" PROPERTIES

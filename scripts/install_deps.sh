@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config ccache
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
-  libglpk-dev libzstd-dev libopenimageio-dev openimageio-tools libeigen3-dev
+  libglpk-dev libzstd-dev zlib1g-dev libopenimageio-dev openimageio-tools libeigen3-dev
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev python3-numpy python3-openimageio
   pybind11-dev python3-dev python3-pytest python3-matplotlib
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev

@@ -84,22 +84,21 @@ std::string zstd_compress(std::string_view raw) {
   return std::string(out.get(), size);
 }
 
-// `raw` coded with zstd after `filter` (none: no copy of it).
-std::string zstd_filtered(const std::string& raw, SectionFilter filter, int element_bytes) {
+bool valid_element_bytes(int bytes) { return bytes == 1 || bytes == 2 || bytes == 4 || bytes == 8; }
+
+}  // namespace
+
+std::string filtered_bytes(const std::string& raw, SectionFilter filter, int element_bytes) {
   switch (filter) {
     case SectionFilter::none:
       break;
     case SectionFilter::shuffle:
-      return zstd_compress(shuffle(raw, element_bytes));
+      return shuffle(raw, element_bytes);
     case SectionFilter::delta_shuffle:
-      return zstd_compress(delta_shuffle(raw, element_bytes));
+      return delta_shuffle(raw, element_bytes);
   }
-  return zstd_compress(raw);
+  return raw;
 }
-
-bool valid_element_bytes(int bytes) { return bytes == 1 || bytes == 2 || bytes == 4 || bytes == 8; }
-
-}  // namespace
 
 std::uint32_t SectionCoding::word() const {
   return std::uint32_t(zstd ? 1 : 0) | (std::uint32_t(filter) << 8) |
@@ -150,7 +149,9 @@ CodedSection code_section(const std::string& raw, int element_bytes) {
   // The smallest coding, raw if none is smaller; raw is copied only then.
   std::optional<CodedSection> best;
   for (SectionFilter filter : candidate_filters(element_bytes)) {
-    std::string coded = zstd_filtered(raw, filter, element_bytes);
+    std::string coded = filter == SectionFilter::none
+                            ? zstd_compress(raw)
+                            : zstd_compress(filtered_bytes(raw, filter, element_bytes));
     if (coded.size() < (best ? best->bytes.size() : raw.size()))
       best = CodedSection{std::move(coded), {true, filter, element_bytes}};
   }

@@ -36,6 +36,9 @@ struct CodedSection {
   SectionCoding coding;
 };
 
+// `raw` (numbers of `element_bytes` bytes) after `filter`: the bytes a codec then compresses.
+std::string filtered_bytes(const std::string& raw, SectionFilter filter, int element_bytes);
+
 // The filters a section of `element_bytes`-byte numbers is tried with, in order (of equal sizes
 // the first wins): none, shuffle (numbers of several bytes), delta then shuffle.
 std::vector<SectionFilter> candidate_filters(int element_bytes);

@@ -137,8 +137,15 @@ void write_folder_atomically(const fs::path& target_path,
       rename_or_throw(temp, target);
       return;
     }
-    for (const fs::directory_entry& entry : fs::directory_iterator(temp))
-      rename_or_throw(entry.path(), target / entry.path().filename());
+    for (const fs::directory_entry& entry : fs::directory_iterator(temp)) {
+      // A folder replaces the folder of its name whole (a rename cannot replace a non-empty one).
+      const fs::path replaced = target / entry.path().filename();
+      if (entry.is_directory() && fs::is_directory(replaced)) {
+        fs::remove_all(replaced, ec);
+        if (ec) throw Error("cannot replace the folder " + replaced.string() + ": " + ec.message());
+      }
+      rename_or_throw(entry.path(), replaced);
+    }
     fs::remove(temp);
   } catch (...) {
     std::error_code ignored;

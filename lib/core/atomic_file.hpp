@@ -35,7 +35,7 @@ void write_file_atomically(const std::filesystem::path& target, const std::strin
 // The same for a folder: write(temp_folder) fills a new temporary folder beside `target` (its
 // parents are created); then, unless an interruption was requested, the folder is renamed to
 // `target`, or, when `target` already is a folder, its entries are moved into it (replacing
-// entries of the same names). On any exception the temporary folder is removed whole, so a failed
+// entries of the same names; a folder replaces the old folder of its name with all its files). On any exception the temporary folder is removed whole, so a failed
 // or interrupted run exposes nothing.
 void write_folder_atomically(const std::filesystem::path& target,
                              const std::function<void(const std::filesystem::path& temp)>& write);

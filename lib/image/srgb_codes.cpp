@@ -25,11 +25,11 @@ int stored_code(float v) {
 struct SrgbTable {
   std::array<std::uint8_t, bins + 1> base{};
   std::array<float, bins + 1> step{};  // where base + 1 begins within the bin (infinity: nowhere)
+  // threshold[k]: the smallest float in [0, 1] whose code is at least k (bisection over the bit
+  // patterns, which order non-negative floats); threshold[256] is infinity.
+  std::array<float, 257> threshold{};
 
   SrgbTable() {
-    // threshold[k]: the smallest float in [0, 1] whose code is at least k (bisection over the
-    // bit patterns, which order non-negative floats).
-    std::array<float, 257> threshold{};
     threshold[256] = std::numeric_limits<float>::infinity();
     for (int k = 1; k < 256; ++k) {
       std::uint32_t low = 0, high = std::bit_cast<std::uint32_t>(1.0f);
@@ -51,15 +51,29 @@ struct SrgbTable {
   }
 };
 
+const SrgbTable& srgb_table() {
+  static const SrgbTable table;
+  return table;
+}
+
 }  // namespace
 
 float unit_clamped(float v) { return v > 0 ? std::min(v, 1.0f) : 0.0f; }
 
 std::uint8_t srgb_code(float linear) {
-  static const SrgbTable table;
+  const SrgbTable& table = srgb_table();
   const float v = unit_clamped(linear);
   const int bin = int(v * bins);
   return std::uint8_t(table.base[bin] + (v >= table.step[bin]));
+}
+
+const std::array<float, 256>& srgb_code_thresholds() {
+  static const std::array<float, 256> thresholds = [] {
+    std::array<float, 256> first{};
+    std::copy_n(srgb_table().threshold.begin(), 256, first.begin());
+    return first;
+  }();
+  return thresholds;
 }
 
 }  // namespace relume

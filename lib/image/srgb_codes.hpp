@@ -8,6 +8,7 @@
 // than a bin).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace relume {
@@ -18,5 +19,10 @@ float unit_clamped(float v);
 
 // The code of linear_to_srgb(v) in 8 bits; v is unit_clamped first (NaN and -Inf: 0, +Inf: 255).
 std::uint8_t srgb_code(float linear);
+
+// The 255 thresholds of those codes: entry k (1..255) is the smallest float whose code is at
+// least k; entry 0 is 0. A renderer outside C++ (the published web page's shader) finds a
+// value's code as the number of entries 1..255 at or below it, the same code as srgb_code.
+const std::array<float, 256>& srgb_code_thresholds();
 
 }  // namespace relume

@@ -59,7 +59,12 @@ class LightInterpolation {
   // rim's weights.
   bool covers(const Eigen::Vector3d& direction) const;
 
+  // The triangulation is over the distinct directions (unit vectors); distinct direction j is
+  // the direction of lights lights_of()[j] (several when lights share a direction). With these a
+  // renderer outside C++ (the published web page) computes the same weights.
   const SphereTriangulation& triangulation() const { return triangulation_; }
+  const std::vector<Eigen::Vector3d>& distinct_directions() const { return distinct_; }
+  const std::vector<std::vector<int>>& lights_of() const { return lights_of_; }
 
  private:
   // The inward normals of a triangle's three edge planes: d lies in the triangle's cone when

@@ -113,11 +113,18 @@ TEST(AtomicFileFaults, FolderIsWrittenWholeOrNotAtAll) {
   EXPECT_EQ(contents(target / "001.exr"), "first");
   // Into an existing folder: entries of the same names are replaced, others kept.
   write_text(target / "notes.txt", "kept");
+  fs::create_directories(target / "data");
+  write_text(target / "data" / "old.bin", "stale");
   write_folder_atomically(target.string() + "/", [&](const fs::path& temp) {
     write_file_atomically(temp / "001.exr", "second");
+    fs::create_directories(temp / "data");
+    write_file_atomically(temp / "data" / "new.bin", "fresh");
   });
   EXPECT_EQ(contents(target / "001.exr"), "second");
   EXPECT_EQ(contents(target / "notes.txt"), "kept");
+  // A folder of the same name is replaced whole: none of the old one's files stay.
+  EXPECT_EQ(contents(target / "data" / "new.bin"), "fresh");
+  EXPECT_FALSE(fs::exists(target / "data" / "old.bin"));
   EXPECT_THAT(temporaries(dir.path()), ::testing::IsEmpty());
 }
 

@@ -1,0 +1,123 @@
+// tile_pyramid.js: the published field's tile pyramid (lib/publish/web_layout.hpp) on the page:
+// which level and tiles a view needs, fetching each tile once when first needed (decoded in Web
+// Workers, tile_decoder.js), and drawing a view with the tiles it has (a tile not yet arrived is
+// stood in for by a coarser one already here). Tiles far from the view are dropped when many are
+// held.
+import { TileDecoder } from './tile_decoder.js';
+
+const heldTiles = 96;
+
+export class TilePyramid {
+  // onTile(level, column, row, tile) is called when a fetched tile is ready to draw;
+  // onError(error) when one fails. workers: TileDecoder's.
+  constructor(manifest, renderer, base, onTile, onError, workers) {
+    this.manifest = manifest;
+    this.renderer = renderer;
+    this.decoder = new TileDecoder(manifest, base, workers);
+    this.onTile = onTile;
+    this.onError = onError;
+    this.size = manifest.tiles.size;
+    this.levels = manifest.tiles.levels;
+    this.tiles = new Map();  // "level/column/row" -> {ready, tile, used, promise}
+    this.frame = 0;
+    this.bytes = 0;  // fetched by the decoder's workers, as the browser counts them
+  }
+
+  // The level whose pixels are nearest the screen's without being larger: field pixels per
+  // canvas pixel 1 / scale.
+  levelFor(scale) {
+    const level = Math.floor(Math.log2(1 / scale));
+    return Math.max(0, Math.min(this.levels.length - 1, level));
+  }
+
+  // The tiles of `level` that a canvas of width x height under `view` shows.
+  visible(level, view, width, height) {
+    const { stride, columns, rows } = this.levels[level], span = this.size * stride;
+    const clamp = (v, n) => Math.max(0, Math.min(n - 1, v));
+    const c0 = clamp(Math.floor(view.x / span), columns), r0 = clamp(Math.floor(view.y / span), rows);
+    const c1 = clamp(Math.floor((view.x + width / view.scale) / span), columns);
+    const r1 = clamp(Math.floor((view.y + height / view.scale) / span), rows);
+    const list = [];
+    for (let r = r0; r <= r1; ++r) for (let c = c0; c <= c1; ++c) list.push([c, r]);
+    return list;
+  }
+
+  // The tile, fetching it when it was not asked for before; resolves to the entry.
+  request(level, column, row) {
+    const key = `${level}/${column}/${row}`;
+    let entry = this.tiles.get(key);
+    if (!entry) {
+      entry = { ready: false, tile: null, used: this.frame };
+      const { width, height } = this.levels[level];
+      const file = this.manifest.tiles.file.replace('{level}', level).replace('{column}', column)
+          .replace('{row}', row);
+      const decoded = this.decoder.decode(file, Math.min(this.size, width - column * this.size),
+                                          Math.min(this.size, height - row * this.size));
+      entry.promise = decoded.then(({ tile, bytes }) => {
+        this.bytes += bytes;
+        entry.tile = this.renderer.uploadTile(tile);
+        entry.ready = true;
+        this.onTile(level, column, row, entry.tile);
+        return entry;
+      });
+      entry.promise.catch(this.onError);
+      this.tiles.set(key, entry);
+    }
+    entry.used = this.frame;
+    return entry;
+  }
+
+  // Resolves when every tile of `level` is here.
+  loadLevel(level) {
+    const { columns, rows } = this.levels[level], all = [];
+    for (let r = 0; r < rows; ++r) for (let c = 0; c < columns; ++c) all.push(this.request(level, c, r).promise);
+    return Promise.all(all);
+  }
+
+  // Whether every tile of `level` that the view shows is here.
+  complete(level, view, width, height) {
+    return this.visible(level, view, width, height)
+        .every(([c, r]) => this.tiles.get(`${level}/${c}/${r}`)?.ready);
+  }
+
+  // Draws the view (renderer.begin called) with the tiles of `level` it shows; true when all
+  // of them were here.
+  draw(level, view, width, height) {
+    ++this.frame;
+    let complete = true;
+    const { stride } = this.levels[level];
+    for (const [c, r] of this.visible(level, view, width, height)) {
+      const entry = this.request(level, c, r);
+      if (entry.ready) {
+        this.renderer.drawTile(entry.tile, stride, c * this.size, r * this.size);
+        continue;
+      }
+      complete = false;
+      const span = this.size * stride;
+      const clip = { x0: c * span, y0: r * span, x1: (c + 1) * span, y1: (r + 1) * span };
+      for (let up = level + 1; up < this.levels.length; ++up) {
+        const upSpan = this.size * this.levels[up].stride;
+        const ancestor = this.tiles.get(`${up}/${Math.floor(clip.x0 / upSpan)}/${Math.floor(clip.y0 / upSpan)}`);
+        if (ancestor && ancestor.ready) {
+          ancestor.used = this.frame;
+          this.renderer.drawTile(ancestor.tile, this.levels[up].stride,
+                                 Math.floor(clip.x0 / upSpan) * this.size,
+                                 Math.floor(clip.y0 / upSpan) * this.size, clip);
+          break;
+        }
+      }
+    }
+    this.evict();
+    return complete;
+  }
+
+  evict() {
+    if (this.tiles.size <= heldTiles) return;
+    const old = [...this.tiles.entries()].filter(([, e]) => e.ready && e.used < this.frame)
+        .sort((a, b) => a[1].used - b[1].used);
+    for (const [key, entry] of old.slice(0, this.tiles.size - heldTiles)) {
+      this.renderer.deleteTile(entry.tile);
+      this.tiles.delete(key);
+    }
+  }
+}
