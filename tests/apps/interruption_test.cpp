@@ -15,6 +15,7 @@
 #include <chrono>
 #include <fstream>
 #include <regex>
+#include <string_view>
 #include <thread>
 
 #include "core/atomic_file.hpp"
@@ -37,17 +38,28 @@ const std::vector<std::string> compress_options = {"--clusters",   "12", "--term
 const std::string streamed_limit = "800K";
 
 // Starts `relume ARGS` (args[0] is the binary), its output in dir/log.txt.
-pid_t start_relume(const testing::TempDir& dir, std::vector<std::string> args) {
+// With `progress`, the child prints its progress lines even when RELUME_QUIET is set around the
+// test run (scripts/test.sh sets it, so CI does).
+pid_t start_relume(const testing::TempDir& dir, std::vector<std::string> args,
+                   bool progress = false) {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<std::string> variables;
+  for (char** variable = environ; *variable; ++variable)
+    if (!std::string_view(*variable).starts_with("RELUME_QUIET=") || !progress)
+      variables.emplace_back(*variable);
+  if (progress) variables.emplace_back("RELUME_QUIET=0");
+  std::vector<char*> envp;
+  for (auto& v : variables) envp.push_back(v.data());
+  envp.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   const std::string log = (dir / "log.txt").string();
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
   pid_t pid = 0;
-  EXPECT_EQ(posix_spawn(&pid, RELUME_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  EXPECT_EQ(posix_spawn(&pid, RELUME_BINARY, &actions, nullptr, argv.data(), envp.data()), 0);
   posix_spawn_file_actions_destroy(&actions);
   return pid;
 }
@@ -196,7 +208,8 @@ TEST_P(ManyClustersInterruption, SeedingStopsWithinTwoSecondsOfTheSignal) {
   const pid_t pid = start_relume(
       dir, {RELUME_BINARY, "-v", "compress", (*scene_dir_ / "scene").string(), "-o",
             (dir / "out.relume").string(), "--clusters", "100000", "--terms", "2", "--assign",
-            "cpu", "--threads", "2", "--noise-floor", "0"});
+            "cpu", "--threads", "2", "--noise-floor", "0"},
+      /*progress=*/true);
   // The warning comes before the seeding, and its progress line (every 5 s off a terminal)
   // during it.
   const std::string warning = "100000 clusters are more than ";
