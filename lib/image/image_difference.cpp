@@ -13,14 +13,19 @@ double peak_signal_to_noise_db(const ImageDifference& difference) {
   return -10.0 * std::log10(difference.mean_squared_difference);
 }
 
+std::string size_and_channels_text(int width, int height, int channels) {
+  return std::to_string(width) + "x" + std::to_string(height) + " with " +
+         std::to_string(channels) + " channels";
+}
+
 void check_comparable(const Image& image, const Image& reference, const std::string& image_label,
                       const std::string& reference_label, const std::vector<std::uint8_t>& mask) {
   if (image.width != reference.width || image.height != reference.height ||
       image.channels != reference.channels)
-    throw Error(image_label + " is " + std::to_string(image.width) + "x" +
-                std::to_string(image.height) + " with " + std::to_string(image.channels) +
-                " channels, " + reference_label + " is " + std::to_string(reference.width) + "x" +
-                std::to_string(reference.height) + " with " + std::to_string(reference.channels));
+    throw Error(image_label + " is " +
+                size_and_channels_text(image.width, image.height, image.channels) + ", " +
+                reference_label + " is " +
+                size_and_channels_text(reference.width, reference.height, reference.channels));
   if (!mask.empty() && mask.size() != std::size_t(image.width) * image.height)
     throw Error("the mask has " + std::to_string(mask.size()) + " pixels but " + image_label +
                 " has " + std::to_string(std::size_t(image.width) * image.height));

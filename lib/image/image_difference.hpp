@@ -36,6 +36,9 @@ inline constexpr double relative_difference_floor = 0.01;
 // 10 log10(1 / mean squared difference); +infinity for identical images.
 double peak_signal_to_noise_db(const ImageDifference& difference);
 
+// "WxH with C channels": how the size checks of the comparisons name an image or a field.
+std::string size_and_channels_text(int width, int height, int channels);
+
 // Throws Error naming both labels when the images differ in size or channels, or naming the image
 // when `mask` (width * height entries, or empty) does not fit it: the check of every comparison
 // of two images (this one, the luminance SSIM, the lit pixel faults, the seam contrast).

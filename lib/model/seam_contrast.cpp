@@ -52,10 +52,10 @@ SeamContrast seam_contrast(const Image& image, const Image& reference, const Com
                            const std::string& reference_label, const std::string& model_label) {
   if (model.width != image.width || model.height != image.height ||
       model.channels != image.channels)
-    throw Error(model_label + " is " + std::to_string(model.width) + "x" +
-                std::to_string(model.height) + " with " + std::to_string(model.channels) +
-                " channels, " + image_label + " is " + std::to_string(image.width) + "x" +
-                std::to_string(image.height) + " with " + std::to_string(image.channels));
+    throw Error(model_label + " is " +
+                size_and_channels_text(model.width, model.height, model.channels) + ", " +
+                image_label + " is " +
+                size_and_channels_text(image.width, image.height, image.channels));
   check_mask(model, model_label);
   check_functions(model, model_label);
   check_clusters(model, model_label);
