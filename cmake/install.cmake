@@ -19,5 +19,5 @@ install(FILES "${PROJECT_BINARY_DIR}/relumeConfig.cmake"
               "${PROJECT_BINARY_DIR}/relumeConfigVersion.cmake"
               "${PROJECT_SOURCE_DIR}/cmake/FindGLPK.cmake"
               "${PROJECT_SOURCE_DIR}/cmake/FindZstd.cmake"
-              "${PROJECT_SOURCE_DIR}/cmake/FindZstd.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/FindOpenJP2.cmake"
         DESTINATION "${package_dir}")

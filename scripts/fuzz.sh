@@ -38,6 +38,7 @@ targets=(
   fuzz_light_files:light_files
   fuzz_field_folder:field_folder
   fuzz_environment_layout:environment_layout
+  fuzz_weight_planes:weight_planes
 )
 mkdir -p build-fuzz/findings
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"

@@ -6,10 +6,10 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config ccache
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
-  libglpk-dev libzstd-dev zlib1g-dev libopenimageio-dev openimageio-tools libeigen3-dev
+  libglpk-dev libzstd-dev libopenjp2-7-dev zlib1g-dev libopenimageio-dev openimageio-tools libeigen3-dev
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev python3-numpy python3-openimageio
   pybind11-dev python3-dev python3-pytest python3-matplotlib
-  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev ffmpeg
   clang libclang-rt-14-dev locales-all
   libcpp-httplib-dev chromium chromium-driver python3-selenium
   libopenmpi-dev openmpi-bin

@@ -51,6 +51,17 @@ struct ValueQuantization {
   bool any() const { return weight_step > 0 || residual_step > 0 || basis_bits > 0; }
 };
 
+// W coded in the camera domain (container section 'weight_planes', docs/container.md): when
+// `codestream` is not empty it is a JPEG 2000 codestream of channels x terms planes of 16-bit
+// integers (lib/model/weight_planes.hpp says which plane is which), and W is exactly what it
+// decodes to, times `step`, taken back from the colour transform to the channels.
+struct CodedWeights {
+  std::vector<std::uint8_t> codestream;
+  float step = 0;
+
+  bool empty() const { return codestream.empty(); }
+};
+
 struct CompressedField {
   int width = 0;
   int height = 0;
@@ -69,6 +80,7 @@ struct CompressedField {
   std::vector<float> bases;  // clusters * terms * lights: F^k[j][i] at (k * terms + j) * lights + i
   ResidualRows residual;     // stored rows, in the transformed basis
   ValueQuantization quantization;
+  CodedWeights coded_weights;  // empty: W is stored as its values
   // The dark model: pixels whose functions are, within the noise, multiples of one shared
   // function per channel, dark[c * lights + i] (in the transformed basis), have no stored rows:
   // dark pixel d relights in channel c as dark_gains[d * channels + c] x that function. The

@@ -1,9 +1,10 @@
 // relume/container.hpp: the .relume container, a CompressedField on disk, versioned and
 // checksummed (byte layout in docs/container.md). A fixed preamble (magic "RELUME\0\0", format
 // version, section table with one CRC-32 per section, CRC-32 of the table) is followed by the
-// sections back to back: header (JSON), lights, mask, functions, clusters, bases, weights,
-// residual_offsets, residual_indices, residual_values. Values are float32 by default; W and
-// residual values may be stored as IEEE half, light indices as 8/16/32 bits. Every byte of the
+// sections back to back: header (JSON), lights, mask, functions, dark pixels, clusters, bases,
+// weights (or the weight planes, a JPEG 2000 codestream), residual_offsets, residual_indices,
+// residual_values. Values are float32 by default; W and residual values may be stored as IEEE
+// half or integers of a step, light indices as 8/16/32 bits. Every byte of the
 // file is covered by a checksum and everything is validated on read: a truncated, altered or
 // inconsistent file is refused with an Error naming the file and the section.
 #pragma once
@@ -20,8 +21,9 @@ namespace relume {
 // The version write_container writes; read_container also reads versions 1 (no entropy coding)
 // and 2 (every cluster stores a weight for each of its terms). From version 3 a stored row has
 // no weight for a term whose basis row is all zero: the clusters that need fewer terms than the
-// field's `terms` (model/cluster_terms.hpp) store only the weights they use.
-inline constexpr std::uint32_t container_format_version = 4;
+// field's `terms` (model/cluster_terms.hpp) store only the weights they use. Version 4 adds
+// the dark gains, version 5 the weights coded as JPEG 2000 planes (section 'weight_planes').
+inline constexpr std::uint32_t container_format_version = 5;
 
 // How W or the residual values are stored: float32, IEEE half, or integers times the field's
 // quantization step (ValuePrecision::quantized: always so for a quantized field, see

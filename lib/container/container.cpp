@@ -27,6 +27,8 @@ ValuePrecision stored_precision(float step, ValuePrecision asked) {
 
 ValuePrecision stored_weight_precision(const CompressedField& field,
                                        const ContainerOptions& options) {
+  // Weights coded as planes are float32 values in memory; the header's precision says so.
+  if (!field.coded_weights.empty()) return ValuePrecision::float32;
   return stored_precision(field.quantization.weight_step, options.weights);
 }
 

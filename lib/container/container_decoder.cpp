@@ -11,6 +11,7 @@
 #include "container/container_bytes.hpp"
 #include "container/container_format.hpp"
 #include "container/container_sections.hpp"
+#include "container/weight_plane_coding.hpp"
 #include "container/weight_prediction.hpp"
 #include "core/atomic_file.hpp"
 #include "core/memory_budget.hpp"
@@ -100,6 +101,7 @@ float get_value(ByteReader& in, ValuePrecision precision) {
 }
 
 struct DecodedHeader {
+  bool weight_planes = false;  // W is coded as planes (version 5 on)
   std::uint64_t stored_rows = 0;
   std::uint64_t nonzeros = 0;
   StoredWidths widths{};
@@ -170,7 +172,9 @@ class ContainerDecoder {
     const std::uint64_t all_weights_bytes = checked_product(
         {rows, std::uint64_t(field.terms), std::uint64_t(value_bytes(header.options.weights))},
         where("weights"));
-    if (parsed_.layout.version >= 3)
+    if (header.weight_planes)
+      sized_reader("weights", {0});
+    else if (parsed_.layout.version >= 3)
       reader("weights", all_weights_bytes);
     else
       sized_reader("weights", {all_weights_bytes});
@@ -256,6 +260,17 @@ class ContainerDecoder {
         throw Error(at + ": 'dark_gain_block' is " + std::to_string(block) +
                     ", this relume reads gains per " + std::to_string(dark_gain_block) +
                     " pixel blocks");
+    }
+    if (version >= 5) {
+      const std::string coding = header_string(header, "weight_coding", at);
+      if (coding != "values" && coding != "jpeg2000_planes")
+        throw Error(at + ": 'weight_coding' is \"" + coding +
+                    "\", expected \"values\" or \"jpeg2000_planes\"");
+      decoded.weight_planes = coding == "jpeg2000_planes";
+      field.coded_weights.step = header_step(header, "weight_planes_step", decoded.weight_planes, at);
+      if (decoded.weight_planes && decoded.options.weights != ValuePrecision::float32)
+        throw Error(at + ": weights coded as planes have the precision \"float32\", the header "
+                    "says \"" + to_string(decoded.options.weights) + "\"");
     }
     decoded.widths.cluster_id_bytes = header_width_bytes(header, "cluster_id_bits", at);
     decoded.widths.residual_length_bytes = header_width_bytes(header, "residual_length_bits", at);
@@ -385,6 +400,8 @@ class ContainerDecoder {
   }
 
   void decode_weights(CompressedField& field, const DecodedHeader& header) const {
+    if (parsed_.layout.version >= 5) decode_weight_planes_section(field, header);
+    if (header.weight_planes) return;
     const std::vector<std::uint8_t> stored = stored_terms(field);
     ByteReader in = sized_reader("weights", {stored_weight_count(field, stored),
                                              std::uint64_t(value_bytes(header.options.weights))});
@@ -406,6 +423,29 @@ class ContainerDecoder {
             field.weights(Eigen::Index(r), j) = get_value(in, header.options.weights);
     }
     check_weights(field, where("weights"));
+  }
+
+  // Version 5: the codestream of W's planes when the header says W is coded so (decoded into W
+  // here), else an empty section.
+  void decode_weight_planes_section(CompressedField& field, const DecodedHeader& header) const {
+    if (!header.weight_planes) {
+      sized_reader("weight_planes", {0});
+      return;
+    }
+    const std::string at = where("weight_planes");
+    const std::uint64_t samples = checked_product(
+        {std::uint64_t(field.channels), std::uint64_t(field.terms), std::uint64_t(field.width),
+         std::uint64_t(field.height)},
+        at);
+    if (samples == 0) throw Error(at + ": a field without terms has no weight planes");
+    // OpenJPEG's planes, the integers and the floats: 12 bytes a sample.
+    check_memory_need(12 * samples, "decoding the weight planes of " + file_);
+    // A codestream is at most a little larger than its 16-bit samples.
+    const ByteReader in = reader("weight_planes", 2 * samples + (1u << 20));
+    const std::string_view codestream = in.rest();
+    field.coded_weights.codestream.assign(codestream.begin(), codestream.end());
+    decode_weight_planes(field, 0, at);
+    check_weights(field, at);
   }
 
   void decode_residual(CompressedField& field, const DecodedHeader& header) const {

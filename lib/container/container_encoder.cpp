@@ -80,6 +80,8 @@ std::string encode_header(const CompressedField& shape, const StoredCounts& coun
               {"weights_precision", to_string(stored_weight_precision(shape, options))},
               {"residual_precision", to_string(stored_residual_precision(shape, options))},
               {"weight_step", shape.quantization.weight_step},
+              {"weight_coding", shape.coded_weights.empty() ? "values" : "jpeg2000_planes"},
+              {"weight_planes_step", shape.coded_weights.empty() ? 0.0f : shape.coded_weights.step},
               {"residual_step", shape.quantization.residual_step},
               {"basis_bits", shape.quantization.basis_bits},
               {"dark_gain_step", shape.dark_gains.empty() ? 0.0f : shape.dark_gain_step},
@@ -134,6 +136,8 @@ FieldSections encode_field_sections(const CompressedField& field,
   }
   out.bases = bases.take();
   out.basis_scales = basis_scales.take();
+  out.weight_planes.assign(field.coded_weights.codestream.begin(),
+                           field.coded_weights.codestream.end());
   return out;
 }
 
@@ -170,7 +174,9 @@ RowSections encode_row_sections(const CompressedField& field, std::size_t first_
                         i % field.terms] != 0;
   };
   const std::size_t first_weight = first_row * std::size_t(field.terms);
-  if (weight_precision == ValuePrecision::quantized) {
+  if (!field.coded_weights.empty()) {
+    // In the weight_planes section.
+  } else if (weight_precision == ValuePrecision::quantized) {
     // Integers, stored as their camera-space prediction errors (the rows before first_row are
     // neighbours only).
     std::vector<std::int32_t> integers(std::size_t(field.weights.size()), 0);
@@ -228,6 +234,7 @@ std::vector<StoredSection> sections_in_file_order(std::string header, FieldSecti
   sections.push_back({"basis_scales", std::move(field.basis_scales), 4});
   sections.push_back({"bases", std::move(field.bases), field.basis_bytes});
   sections.push_back({"weights", std::move(rows.weights), weight_bytes});
+  sections.push_back({"weight_planes", std::move(field.weight_planes), 1});
   sections.push_back({"residual_offsets", std::move(rows.lengths), widths.residual_length_bytes});
   sections.push_back({"residual_indices", std::move(rows.indices), widths.light_index_bytes});
   sections.push_back({"residual_values", std::move(rows.values), residual_bytes});
@@ -285,7 +292,8 @@ ContainerLayout plan_container(const CompressedField& field, const ContainerOpti
 
 CompressedField quantize_for_container(CompressedField field, const ContainerOptions& options) {
   const std::string where = "cannot store the compressed field";
-  if (stored_weight_precision(field, options) == ValuePrecision::float16)
+  if (field.coded_weights.empty() &&
+      stored_weight_precision(field, options) == ValuePrecision::float16)
     for (Eigen::Index i = 0; i < field.weights.size(); ++i) {
       float& w = field.weights.data()[i];
       w = half_bits_to_float(checked_half(

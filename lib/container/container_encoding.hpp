@@ -33,10 +33,11 @@ std::string encode_header(const CompressedField& shape, const StoredCounts& coun
 // Raw bytes of the sections that describe the field as a whole.
 struct FieldSections {
   std::string lights, mask, functions, dark_pixels, dark, dark_gains, basis_scales, bases;
+  std::string weight_planes;  // the codestream of W's planes, empty when W is stored as values
   int basis_bytes = 4;  // bytes per stored basis value
 };
 
-// `field`'s lights, mask, dark pixels and model, bases; `stored_functions` (ascending function
+// `field`'s lights, mask, dark pixels and model, bases, coded weight planes; `stored_functions` (ascending function
 // indices of the stored rows) make the functions section.
 FieldSections encode_field_sections(const CompressedField& field,
                                     const std::vector<std::uint64_t>& stored_functions);
@@ -48,13 +49,14 @@ struct RowSections {
 
 // The row sections of `field`'s stored rows from `first_row` on: a strip's, where the rows
 // before `first_row` (the last pixel row of the strip above) are there only as the neighbours
-// the quantized weights are predicted from (weight_prediction.hpp). Throws Error("<where>: ...")
+// the quantized weights are predicted from (weight_prediction.hpp). Weights coded as planes are
+// not in the row sections (FieldSections::weight_planes). Throws Error("<where>: ...")
 // for a value that does not fit half precision when that is asked.
 RowSections encode_row_sections(const CompressedField& field, std::size_t first_row,
                                 const ContainerOptions& options, const StoredWidths& widths,
                                 const std::string& where);
 
-// The 13 sections of the current version in file order, with their numbers' sizes.
+// The 15 sections of the current version in file order, with their numbers' sizes.
 std::vector<StoredSection> sections_in_file_order(std::string header, FieldSections field,
                                                   RowSections rows, const StoredWidths& widths,
                                                   int weight_bytes, int residual_bytes);

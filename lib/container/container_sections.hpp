@@ -23,7 +23,8 @@ int value_bytes(ValuePrecision precision);
 
 // How the field's W and residual values are stored with `options`: quantized when the field's
 // values are (ValueQuantization), else float16 when the options say so, else float32 (also when
-// the options ask for quantized values the field does not have).
+// the options ask for quantized values the field does not have). Weights coded as planes count
+// as float32 (their values in memory; the container holds the codestream).
 ValuePrecision stored_weight_precision(const CompressedField& field,
                                        const ContainerOptions& options);
 ValuePrecision stored_residual_precision(const CompressedField& field,

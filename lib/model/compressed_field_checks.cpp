@@ -108,6 +108,11 @@ void check_weights(const CompressedField& field, const std::string& where) {
         throw Error(where + ": weight of " + stored_row_name(r) + " term " + std::to_string(j) +
                     " is " + std::to_string(field.weights(Eigen::Index(r), j)) +
                     ", expected finite");
+  const CodedWeights& coded = field.coded_weights;
+  if (!coded.empty() && !(std::isfinite(coded.step) && coded.step > 0 &&
+                          field.quantization.weight_step == 0 && field.terms > 0))
+    throw Error(where + ": W is coded as planes with the step " + std::to_string(coded.step) +
+                ", expected a positive step, terms, and no quantization step of its values");
 }
 
 void check_residual_offsets(const CompressedField& field, const std::string& where) {

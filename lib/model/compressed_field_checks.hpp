@@ -30,7 +30,8 @@ void check_functions(const CompressedField& field, const std::string& where);
 void check_clusters(const CompressedField& field, const std::string& where);
 // clusters x terms x lights finite basis values.
 void check_bases(const CompressedField& field, const std::string& where);
-// W is stored rows x terms, finite.
+// W is stored rows x terms, finite; coded as planes, with a positive step (its values are not
+// also quantized).
 void check_weights(const CompressedField& field, const std::string& where);
 // stored rows + 1 offsets from 0, non-decreasing, ending at the entry count; as many light
 // indices as values. (No stored rows: empty offsets or {0} are both accepted.)

@@ -381,7 +381,7 @@ TEST(Container, AnAlteredByteInAnySectionIsRefusedNamingTheSection) {
   write_container(path, sample_field_with_dark_pixels());
   const std::string original = read_file(path);
   const ContainerLayout layout = describe_container(path);
-  ASSERT_EQ(layout.sections.size(), 14u);
+  ASSERT_EQ(layout.sections.size(), 15u);
   for (const ContainerSection& section : layout.sections) {
     if (section.bytes == 0) continue;  // basis_scales of float bases: nothing to alter
     std::string altered = original;
@@ -439,11 +439,11 @@ TEST(Container, ForeignFilesWrongMagicAndVersionsGetClearErrors) {
   EXPECT_NE(message.find("magic"), std::string::npos) << message;
 
   std::string version = original;
-  version[8] = 5;
+  version[8] = 6;
   write_bytes(path, version);
   message = read_error(path);
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("version 5 is not supported (this relume reads versions 1 to 4)"),
+  EXPECT_NE(message.find("version 6 is not supported (this relume reads versions 1 to 5)"),
             std::string::npos)
       << message;
 
@@ -624,8 +624,8 @@ std::string with_version(const std::filesystem::path& path, std::uint32_t versio
   return bytes;
 }
 
-// Files that relume 3-format writers made (tests/container/data, written from sample_field and
-// testing::add_dark_pixels before version 4 added the dark gains).
+// Files that older relume writers made (tests/container/data): v3_* written from sample_field and
+// testing::add_dark_pixels before version 4 added the dark gains, v4_* before version 5.
 std::filesystem::path version_three_file(const std::string& name) {
   return testing::source_dir() / "tests/container/data" / name;
 }
@@ -643,6 +643,21 @@ TEST(Container, VersionThreeFilesStillRead) {
   const std::uint32_t q = dark.dark_pixels.back();
   for (int i = 0; i < dark.lights; ++i)
     EXPECT_EQ(back.values(q * dark.channels, i), dark.dark[std::size_t(i)]);
+}
+
+TEST(Container, VersionFourFilesStillRead) {
+  // Written by relume before version 5 (tests/container/data: sample_field, and
+  // sample_field_with_dark_pixels); version 5 added the weight_planes section.
+  EXPECT_EQ(describe_container(version_three_file("v4_sample.relume")).version, 4u);
+  const CompressedField sample = read_container(version_three_file("v4_sample.relume"));
+  expect_identical(sample_field(), sample);
+  EXPECT_TRUE(sample.coded_weights.empty());
+  const CompressedField dark = read_container(version_three_file("v4_dark_gains.relume"));
+  const CompressedField expected = sample_field_with_dark_pixels();
+  expect_identical(expected, dark);
+  EXPECT_EQ(dark.dark_pixels, expected.dark_pixels);
+  EXPECT_EQ(dark.dark, expected.dark);
+  EXPECT_EQ(dark.dark_gains, expected.dark_gains);
 }
 
 TEST(Container, VersionTwoFilesStillRead) {
@@ -837,9 +852,9 @@ TEST(InfoCommand, PrintsDimensionsSectionsAndRatio) {
   for (const auto& section : info["sections"])
     section_total += section["bytes"].get<std::uint64_t>();
   EXPECT_EQ(section_total + info["preamble_bytes"].get<std::uint64_t>(), file_bytes);
-  EXPECT_EQ(info["sections"][13]["name"], "residual_values");
-  EXPECT_EQ(info["sections"][13]["raw_bytes"], field.residual.nonzeros() * 2);
-  EXPECT_LE(info["sections"][13]["bytes"], field.residual.nonzeros() * 2);
+  EXPECT_EQ(info["sections"][14]["name"], "residual_values");
+  EXPECT_EQ(info["sections"][14]["raw_bytes"], field.residual.nonzeros() * 2);
+  EXPECT_LE(info["sections"][14]["bytes"], field.residual.nonzeros() * 2);
   EXPECT_DOUBLE_EQ(info["bits_per_stored_row"].get<double>(),
                    8.0 * double(file_bytes) / double(field.stored_rows()));
 

@@ -41,6 +41,8 @@ std::string crafted_container(std::int64_t width, std::int64_t height, const flo
                            {"weights_precision", "float32"},
                            {"residual_precision", "float32"},
                            {"weight_step", 0},
+                           {"weight_coding", "values"},
+                           {"weight_planes_step", 0},
                            {"residual_step", 0},
                            {"basis_bits", 0},
                            {"cluster_id_bits", 8},
@@ -100,6 +102,23 @@ TEST(HostileContainer, TheNonNegativeMarkIsABooleanOrAbsent) {
         decode_container(crafted_container(7, 5, up, {{"non_negative", "yes"}}), "bad.relume");
       }),
       HasSubstr("bad.relume: section 'header': 'non_negative' is not true or false"));
+}
+
+TEST(HostileContainer, WeightCodingsAndPlaneStepsOutsideTheFormatAreRefused) {
+  const auto message = [](const nlohmann::json& keys) {
+    return error_message([&] { decode_container(crafted_container(7, 5, up, keys), "w.relume"); });
+  };
+  EXPECT_THAT(message({{"weight_coding", "wavelet"}}),
+              HasSubstr("w.relume: section 'header': 'weight_coding' is \"wavelet\", expected "
+                        "\"values\" or \"jpeg2000_planes\""));
+  EXPECT_THAT(message({{"weight_planes_step", 0.5}}),
+              HasSubstr("'weight_planes_step' is 0.5, expected 0 for values that are not "
+                        "quantized"));
+  EXPECT_THAT(message({{"weight_coding", "jpeg2000_planes"}, {"weight_planes_step", -1}}),
+              HasSubstr("'weight_planes_step' is -1, expected a positive step"));
+  // Planes for a field without terms: nothing to decode them into, refused by the section.
+  EXPECT_THAT(message({{"weight_coding", "jpeg2000_planes"}, {"weight_planes_step", 1}}),
+              HasSubstr("section 'weight_planes': a field without terms has no weight planes"));
 }
 
 TEST(HostileContainer, PixelCountsBeyondTheLimitAreRefusedBeforeAllocating) {
