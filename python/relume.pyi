@@ -108,6 +108,7 @@ class CompressOptions:
     target_bytes_per_pixel: float = 0.0
     target_psnr: float = 0.0
     target_region: str = "frame"
+    target_models: str = "all"
     psnr_white: float = 1.0
     psnr_mask: PathLike = ""
     mask_file: PathLike = ""
@@ -271,6 +272,7 @@ def compress(
     target_bytes_per_pixel: float = 0.0,
     target_psnr: float = 0.0,
     target_region: str = "frame",
+    target_models: str = "all",
     psnr_white: float = 1.0,
     psnr_mask: PathLike = "",
     mask_file: PathLike = "",
@@ -322,6 +324,7 @@ def compress_file(
     target_bytes_per_pixel: float = 0.0,
     target_psnr: float = 0.0,
     target_region: str = "frame",
+    target_models: str = "all",
     psnr_white: float = 1.0,
     psnr_mask: PathLike = "",
     mask_file: PathLike = "",

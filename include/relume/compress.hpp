@@ -98,6 +98,9 @@ struct CompressOptions {
   double target_bytes_per_pixel = 0;
   double target_psnr = 0;
   std::string target_region = "frame";
+  // The models a rate target weighs: "all", "clustered" (the paper's clustered factorization) or
+  // "one-basis" (one basis for every function, its weights coded as JPEG 2000 planes).
+  std::string target_models = "all";
   double psnr_white = 1.0;          // the field value that is 255 in the report's 8-bit PSNR
   std::filesystem::path psnr_mask;  // the mask of the masked PSNR (default: the field's)
 

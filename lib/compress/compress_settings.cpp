@@ -66,6 +66,7 @@ CompressSettings compress_settings(const CompressOptions& options) {
   check_choice("--transform", options.transform, {"identity", "haar"});
   check_choice("--assign", options.assign, {"opencl", "cpu"});
   check_choice("--target-region", options.target_region, {"frame", "mask"});
+  check_choice("--target-models", options.target_models, {"all", "clustered", "one-basis"});
   parse_input_encoding(options.input_encoding);
   if (options.irls_iterations < 0)
     throw Error("--irls-iterations must be >= 0, got " + std::to_string(options.irls_iterations));

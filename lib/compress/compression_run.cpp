@@ -102,6 +102,8 @@ RateTarget rate_target(const CompressOptions& asked, const std::string& solver,
   target.region = asked.target_region == "frame"
                       ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1)
                       : psnr_mask;
+  target.clustered = asked.target_models != "one-basis";
+  target.one_basis = asked.target_models != "clustered";
   target.parameters_json = [solver](const CompressionOptions& options,
                                     const CompressionStats& stats) {
     return compression_parameters(options, stats, solver).dump();
@@ -228,7 +230,9 @@ class CompressionRunner {
       if (!cluster_streamed(hook, resume)) return false;
       quantize_start = quantize_start_;
     } else if (asked_.target_error > 0 || has_rate_target(asked_)) {
+      const auto search_start = Clock::now();
       search_target();
+      time_phase("target_search", search_start);
       quantize_start = quantize_start_;
     } else {
       compressed_ = compress_field(*field_, settings_.compression, stats_, hook, resume);

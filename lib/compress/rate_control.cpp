@@ -9,6 +9,9 @@
 #include <relume/error.hpp>
 #include <utility>
 
+#include "compress/global_basis.hpp"
+#include "compress/global_basis_rate.hpp"
+#include "core/memory_budget.hpp"
 #include "model/field_psnr.hpp"
 
 namespace relume {
@@ -139,6 +142,59 @@ bool better(const CurveChoice& a, const CurveChoice& b, const RateTarget& target
   return a.met ? a.point.bytes < b.point.bytes : a.point.psnr > b.point.psnr;
 }
 
+nlohmann::ordered_json to_json(const PlanesRatePoint& point) {
+  return {{"plane_bytes", point.plane_bytes},
+          {"bytes", point.bytes},
+          {"error_masked", point.error},
+          {"psnr_8bit", point.psnr}};
+}
+
+// The one-basis model at ascending basis sizes, each fitted to the target and offered to `offer`
+// with its options. The sizes stop once two in a row are worse than the best of them, and where
+// the weight planes would not fit in memory. `stats`: what the model's parameters record.
+void try_global_basis(const ReflectanceField& field, const CompressionOptions& options,
+                      const CompressionStats& stats, const RateTarget& target,
+                      const ContainerOptions& container, nlohmann::ordered_json& tried,
+                      const std::function<void(GlobalBasisFit&, const CompressionOptions&)>& offer) {
+  const unsigned threads = options.clustering.threads;
+  std::vector<int> sizes = global_basis_sizes(field.lights());
+  // The planes, their integers, OpenJPEG's copy and the decoded floats: about 16 bytes a sample.
+  const std::uint64_t per_term = 16 * std::uint64_t(field.channels) * std::uint64_t(field.pixels());
+  const std::uint64_t budget = memory_budget().bytes;
+  while (!sizes.empty() && per_term * std::uint64_t(sizes.back()) > budget) sizes.pop_back();
+  if (sizes.empty()) return;
+  const Eigen::MatrixXd directions = global_basis_directions(field, sizes.back());
+  std::optional<CurveChoice> best_here;
+  int worse_in_a_row = 0;
+  for (const int terms : sizes) {
+    CompressionOptions sized = options;
+    sized.clustering.terms = terms;
+    ContainerOptions planned = container;
+    if (target.parameters_json) planned.parameters_json = target.parameters_json(sized, stats);
+    GlobalBasisFit fit = fit_global_basis(field, directions, terms, target, planned, threads);
+    const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met};
+    nlohmann::ordered_json points = nlohmann::ordered_json::array();
+    for (const PlanesRatePoint& point : fit.points) points.push_back(to_json(point));
+    tried.push_back({{"model", "global_basis"},
+                     {"terms", terms},
+                     {"clusters", 1},
+                     {"met", fit.met},
+                     {"choice", to_json(fit.point)},
+                     {"points", points}});
+    if (!options.clustering.quiet)
+      std::fprintf(stderr,
+                   "compress: rate target: one basis of %d terms, weights as JPEG 2000 planes -> "
+                   "%llu bytes, %.2f dB, error %.5f%s\n",
+                   terms, static_cast<unsigned long long>(fit.point.bytes), fit.point.psnr,
+                   fit.point.error, fit.met ? "" : " (target not met)");
+    const bool best_size = !best_here || better(choice, *best_here, target);
+    if (best_size) best_here = choice;
+    offer(fit, sized);
+    worse_in_a_row = best_size ? 0 : worse_in_a_row + 1;
+    if (worse_in_a_row == 2) break;
+  }
+}
+
 }  // namespace
 
 TargetSearch compress_to_rate_target(const ReflectanceField& field,
@@ -162,7 +218,8 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   const std::vector<StoredAs> ways =
       quantization ? target.stored_as : std::vector<StoredAs>{StoredAs{}};  // float: unused
   if (ways.empty()) throw Error("a rate target needs at least one way to store");
-  for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
+  if (!target.clustered && !target.one_basis) throw Error("a rate target needs a model to weigh");
+  if (target.clustered) for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
     for (const StoredAs& way : ways) {
       CompressedField stored = grid.full;
       std::optional<QuantizationChoice> quantized;
@@ -188,7 +245,8 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       nlohmann::ordered_json points = nlohmann::ordered_json::array();
       for (const RatePoint& point : curve.points())
         points.push_back(to_json(point));
-      tried.push_back({{"terms", grid.options.clustering.terms},
+      tried.push_back({{"model", "clustered"},
+                       {"terms", grid.options.clustering.terms},
                        {"clusters", stored.clusters},
                        {"term_budget", way.term_budget},
                        {"quantization_budget", way.quantization_budget},
@@ -214,6 +272,26 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       }
     }
   });
+  // The one-basis model keeps the noise model the grid estimated (its parameters report it).
+  CompressionOptions global_options = options;
+  global_options.clustering.clusters = 1;
+  CompressionStats global_stats;
+  global_stats.noise = stats.noise;
+  global_stats.functions = field.functions();
+  global_stats.clusters_asked = global_stats.clusters = 1;
+  if (target.one_basis) try_global_basis(field, global_options, global_stats, target, container, tried,
+                   [&](GlobalBasisFit& fit, const CompressionOptions& sized) {
+                     const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr},
+                                              fit.met};
+                     if (best_choice && !better(choice, *best_choice, target)) return;
+                     best_choice = choice;
+                     best.field = std::move(fit.field);
+                     best.quantization.reset();
+                     best.options = sized;
+                     best_stored_as = StoredAs{};
+                     stats = global_stats;
+                     stats.stored_rows = best.field.stored_rows();
+                   });
   nlohmann::ordered_json goal;
   if (target.bytes > 0)
     goal = {{"bytes", target.bytes},
@@ -230,11 +308,15 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
            ? "each (terms, clusters) pair factored once with its full residual and stored in "
              "each way tried (term and quantization budgets); the residual entries inside the "
              "region ranked by e^2 and the most kept whose container fits (bisection); of those "
-             "that fit, the highest 8-bit PSNR over the region wins"
+             "that fit; then one basis for all functions at ascending sizes, its weight planes "
+             "coded as JPEG 2000 in the bytes left; of all that fit, the highest 8-bit PSNR over "
+             "the region wins"
            : "each (terms, clusters) pair factored once with its full residual and stored in "
              "each way tried (term and quantization budgets); the residual entries inside the "
              "region ranked by e^2 and the fewest kept whose 8-bit PSNR reaches the target "
-             "(bisection); of those that reach it, the smallest container wins"},
+             "(bisection); then one basis for all functions at ascending sizes, its weight planes "
+             "coded as JPEG 2000 in the fewest bytes that reach the target (bisection); of all "
+             "that reach it, the smallest container wins"},
       {"met", best_choice && best_choice->met},
       {"tried", tried},
       {"chosen",

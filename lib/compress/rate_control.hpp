@@ -6,11 +6,14 @@
 // number kept is found by bisection: the most entries whose container fits the bytes, or the
 // fewest whose 8-bit PSNR reaches the target. Of the ways that meet the target, the highest PSNR
 // (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the explanation says
-// so. Every rate-distortion point tried is in the explanation.
+// so. Beside them, the one-basis model (global_basis.hpp) at ascending basis sizes, its weights
+// coded as JPEG 2000 planes fitted to the target (global_basis_rate.hpp), competes by the same
+// rule. Every rate-distortion point tried is in the explanation.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +35,9 @@ struct RateTarget {
   double psnr_white = 1.0;  // the field value that is 255 for the PSNR
   // width * height, non-zero where the PSNR is measured; empty: the field's mask.
   std::vector<std::uint8_t> region;
+  // The models weighed: the clustered grid, the one-basis model (at least one of them).
+  bool clustered = true;
+  bool one_basis = true;
   // With quantized storage, each candidate is stored in each of these ways and the best counts.
   std::vector<StoredAs> stored_as{StoredAs{}};
   // The parameter record the caller's container will carry (ContainerOptions::parameters_json)

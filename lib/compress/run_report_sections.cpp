@@ -130,9 +130,12 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
     thresholds += value;
   }
   char dark[200];
-  std::snprintf(dark, sizeof dark, ", %lld dark pixels (noise floor %s, %s)",
-                static_cast<long long>(report["field"]["dark_pixels"].get<std::int64_t>()),
-                thresholds.c_str(), noise["estimated"].get<bool>() ? "estimated" : "given");
+  const auto dark_pixels = static_cast<long long>(report["field"]["dark_pixels"].get<std::int64_t>());
+  if (thresholds.empty())  // a model without the dark model (one basis)
+    std::snprintf(dark, sizeof dark, ", %lld dark pixels", dark_pixels);
+  else
+    std::snprintf(dark, sizeof dark, ", %lld dark pixels (noise floor %s, %s)", dark_pixels,
+                  thresholds.c_str(), noise["estimated"].get<bool>() ? "estimated" : "given");
   const nlohmann::ordered_json& per_light = report["per_light_error_masked"];
   const std::string output = report["output"].get<std::string>();
   char line[1024];

@@ -119,6 +119,7 @@ arguments; relume.CompressOptions() shows the defaults.)");
   RELUME_OPTION(target_bytes_per_pixel);
   RELUME_OPTION(target_psnr);
   RELUME_OPTION(target_region);
+  RELUME_OPTION(target_models);
   RELUME_OPTION(psnr_white);
   RELUME_OPTION(use_mask);
   RELUME_OPTION(input_encoding);

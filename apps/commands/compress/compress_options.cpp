@@ -163,6 +163,14 @@ void add_target_options(CLI::App& command, CompressOptions& options) {
       ->check(CLI::IsMember({"frame", "mask"}))
       ->capture_default_str();
   command
+      .add_option("--target-models", options.target_models,
+                  "Which models a rate target weighs: all (the best wins), clustered (the "
+                  "paper's clusters: few terms per pixel, the fastest relighting) or one-basis "
+                  "(one basis for every function, its weights coded as JPEG 2000 images: the "
+                  "fewest bytes at low and middle rates)")
+      ->check(CLI::IsMember({"all", "clustered", "one-basis"}))
+      ->capture_default_str();
+  command
       .add_option("--psnr-white", options.psnr_white,
                   "The field value that is 255 in the report's 8-bit PSNR (1 for fields of "
                   "8-bit or normalised images)")

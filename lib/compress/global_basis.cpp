@@ -1,0 +1,90 @@
+// Implementation of the one-basis model (see global_basis.hpp).
+#include "compress/global_basis.hpp"
+
+#include <cmath>
+#include <relume/error.hpp>
+
+#include "compress/leading_subspace.hpp"
+
+namespace relume {
+namespace {
+
+// The functions inside the mask with non-zero energy, ascending.
+std::vector<std::uint32_t> stored_functions(const ReflectanceField& field) {
+  std::vector<std::uint32_t> stored;
+  for (std::int64_t p = 0; p < field.functions(); ++p) {
+    const std::size_t pixel = std::size_t(p / field.channels);
+    if (!field.mask.empty() && !field.mask[pixel]) continue;
+    if (field.values.row(p).squaredNorm() > 0) stored.push_back(std::uint32_t(p));
+  }
+  return stored;
+}
+
+}  // namespace
+
+Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms) {
+  if (terms < 1 || terms > field.lights())
+    throw Error("a global basis of " + std::to_string(terms) + " terms for " +
+                std::to_string(field.lights()) + " lights: expected 1 to the light count");
+  if (field.functions() >= (std::int64_t(1) << 32))
+    throw Error("a global basis needs fewer than 2^32 functions, the field has " +
+                std::to_string(field.functions()));
+  bool all_inside = true;
+  for (const std::uint8_t inside : field.mask) all_inside = all_inside && inside;
+  // Outside the mask nothing is stored: those functions do not shape the basis. Zero functions
+  // add nothing to X^T X, so the whole field serves when every pixel is inside.
+  if (all_inside) return leading_right_singular_vectors(field.values, terms);
+  const std::vector<std::uint32_t> stored = stored_functions(field);
+  RowMatrixF inside(Eigen::Index(stored.size()), field.lights());
+  for (std::size_t r = 0; r < stored.size(); ++r)
+    inside.row(Eigen::Index(r)) = field.values.row(stored[r]);
+  return leading_right_singular_vectors(inside, terms);
+}
+
+CompressedField global_basis_field(const ReflectanceField& field,
+                                   const Eigen::MatrixXd& directions, int terms) {
+  if (terms < 1 || terms > directions.rows() || directions.cols() != field.lights())
+    throw Error("a global basis of " + std::to_string(terms) + " terms from " +
+                std::to_string(directions.rows()) + " directions of " +
+                std::to_string(directions.cols()) + " lights, for a field of " +
+                std::to_string(field.lights()) + " lights");
+  CompressedField out;
+  out.width = field.width;
+  out.height = field.height;
+  out.channels = field.channels;
+  out.lights = field.lights();
+  out.terms = terms;
+  out.clusters = 1;
+  out.mask = field.mask.empty() ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1)
+                                : field.mask;
+  out.directions = field.directions;
+  out.intensities = field.intensities;
+  out.non_negative = (field.values.array() >= 0.0f).all();
+
+  // The basis as 12-bit integers times one scale per function.
+  ValueQuantization& quantization = out.quantization;
+  quantization.basis_bits = global_basis_bits;
+  const double largest_integer = std::ldexp(1.0, global_basis_bits - 1) - 1;
+  Eigen::MatrixXf basis(terms, out.lights);
+  for (int j = 0; j < terms; ++j) {
+    const double largest = std::max(directions.row(j).cwiseAbs().maxCoeff(), 1e-30);
+    const float scale = float(largest / largest_integer);
+    quantization.basis_scales.push_back(scale);
+    for (int i = 0; i < out.lights; ++i)
+      basis(j, i) = float(std::round(directions(j, i) / scale) * scale);
+  }
+  out.bases.resize(std::size_t(terms) * std::size_t(out.lights));
+  for (int j = 0; j < terms; ++j)
+    for (int i = 0; i < out.lights; ++i) out.bases[std::size_t(j) * out.lights + i] = basis(j, i);
+
+  out.stored_function = stored_functions(field);
+  out.cluster.assign(out.stored_function.size(), 0);
+  out.weights.resize(Eigen::Index(out.stored_function.size()), terms);
+  const Eigen::MatrixXf basis_t = basis.transpose();
+  for (std::size_t r = 0; r < out.stored_function.size(); ++r)
+    out.weights.row(Eigen::Index(r)) = field.values.row(out.stored_function[r]) * basis_t;
+  out.residual.row_offsets.assign(out.stored_function.size() + 1, 0);
+  return out;
+}
+
+}  // namespace relume

@@ -1,0 +1,42 @@
+// The one-basis model (global_basis.hpp) fitted to a rate target: for a basis size, the weight
+// planes' codestream is given the bytes the container has left (a byte target) or the fewest
+// bytes whose PSNR reaches the target (bisection on the bytes). The rate targets
+// (rate_control.hpp) try it at several basis sizes beside the clustered candidates.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <relume/container.hpp>
+#include <vector>
+
+#include "compress/rate_control.hpp"
+
+namespace relume {
+
+struct PlanesRatePoint {
+  std::uint64_t plane_bytes = 0;  // the codestream
+  std::uint64_t bytes = 0;        // the container
+  double error = 0;               // Eq. 16 over the stored functions
+  double psnr = 0;                // 8-bit, inside the target's region
+};
+
+struct GlobalBasisFit {
+  CompressedField field;  // its weights coded at `point`
+  PlanesRatePoint point;
+  bool met = false;
+  std::vector<PlanesRatePoint> points;  // every point measured, in order
+};
+
+// The basis sizes tried for a field of `lights` lights, ascending: 4, 8, 16, 24, 32, 48, 64, 96,
+// 128, 192, 256, ... up to the light count.
+std::vector<int> global_basis_sizes(int lights);
+
+// The field with the first `terms` of `directions` (global_basis_directions) and its weight planes
+// coded to meet `target` (exactly one of bytes and PSNR, as rate_control.hpp says) in a container
+// written with `container`. Not met: the closest point (the fewest bytes for a byte target, the
+// most for a PSNR target).
+GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
+                                int terms, const RateTarget& target,
+                                const ContainerOptions& container, unsigned threads);
+
+}  // namespace relume
