@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# relume's rate targets against the video codecs a user already has (issue 32): the shared ball
+# normalised to 8 bit without its mask (the whole frame stored, scripts/normalize_to_8bit.py),
+# compressed by `relume compress --linear --target-bytes-per-pixel B` at each rate, and by FFmpeg's
+# libaom AV1 (yuv444p) and x265 (yuv444p10le) over the light images as one video
+# (scripts/codec_curve.py). Bytes per pixel (file bytes / (width x height)) against the 8-bit PSNR
+# over the whole frame and inside the ball's mask, the same definition for all.
+#   scripts/bench_codecs.sh [BUILD_DIR] [OUT_DIR]
+# BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
+# all, what a user gets). Writes OUT_DIR/codecs.jsonl (one line per point), OUT_DIR/codecs.md (the
+# table, each codec interpolated at relume's bytes) and OUT_DIR/codecs.png.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build}"
+out="${2:-/tmp/relume-codecs}"
+data="${RELUME_DATA:-../shared/data}"
+relume="$build/apps/relume"
+ball="$data/olat/diligent-ball-16bit"
+rates="${BENCH_RATES:-0.05 0.1 0.2 0.5 1 2}"
+models="${BENCH_MODELS:-all}"
+command -v ffmpeg >/dev/null || { echo "bench_codecs.sh: ffmpeg not found (scripts/install_deps.sh)"; exit 1; }
+mkdir -p "$out"
+[ -d "$out/ball8_nomask" ] ||
+  /usr/bin/python3 scripts/normalize_to_8bit.py "$ball" "$out/ball8_nomask" --no-mask
+points="$out/codecs.jsonl"
+: > "$points"
+/usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" av1 50,40,30,20,10 >> "$points"
+/usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" x265 38,32,26,20,14 >> "$points"
+for rate in $rates; do
+  start=$(date +%s%N)
+  "$relume" -q compress "$out/ball8_nomask" -o "$out/ball_$rate.relume" -y --linear \
+    --psnr-mask "$ball/mask.png" --target-bytes-per-pixel "$rate" --target-models "$models" \
+    --report "$out/ball_$rate.json"
+  milliseconds=$(( ($(date +%s%N) - start) / 1000000 ))
+  /usr/bin/python3 - "$out/ball_$rate.json" "$rate" "$milliseconds" "$models" >> "$points" <<'PY'
+import json, sys
+report = json.load(open(sys.argv[1]))
+chosen = report["rate_target"]["chosen"]
+model = "one basis" if chosen["clusters"] == 1 and report["field"].get("dark_pixels", 0) == 0 \
+    and report["residual_nonzeros"] == 0 else "clustered"
+print(json.dumps({"codec": "relume", "setting": f"target {sys.argv[2]} B/px ({sys.argv[4]}): "
+                  f"{model}, {chosen['terms']} terms, {chosen['clusters']} clusters",
+                  "bytes": report["bytes"], "bytes_per_pixel": report["bytes_per_pixel"],
+                  "psnr_whole_frame": report["psnr_8bit"]["whole_frame"],
+                  "psnr_mask": report["psnr_8bit"]["mask"], "seconds": float(sys.argv[3]) / 1000}))
+PY
+done
+/usr/bin/python3 scripts/codec_table.py "$points" "$out/codecs.md" "$out/codecs.png"
+cat "$out/codecs.md"

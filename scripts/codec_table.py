@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""The table and plot of scripts/bench_codecs.sh: every point of POINTS (JSON lines: codec,
+setting, bytes_per_pixel, psnr_whole_frame, psnr_mask), and for each relume point the codecs'
+PSNR interpolated at its bytes per pixel (linear in log bytes between the two codec points around
+it; blank outside a codec's range) with relume's lead in dB.
+
+Usage: scripts/codec_table.py POINTS TABLE.md PLOT.png
+"""
+import json
+import math
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def interpolate(curve, rate, key):
+    curve = sorted(curve, key=lambda p: p["bytes_per_pixel"])
+    for a, b in zip(curve, curve[1:]):
+        if a["bytes_per_pixel"] <= rate <= b["bytes_per_pixel"]:
+            t = math.log(rate / a["bytes_per_pixel"]) / math.log(
+                b["bytes_per_pixel"] / a["bytes_per_pixel"])
+            return a[key] + t * (b[key] - a[key])
+    return None
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    points = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
+    codecs = sorted({p["codec"] for p in points if p["codec"] != "relume"})
+    lines = ["| codec | setting | B/px | whole-frame dB | mask dB | " +
+             " | ".join(f"{c} at equal bytes (whole / mask), relume's lead" for c in codecs) + " |",
+             "|---" * (5 + len(codecs)) + "|"]
+    for p in points:
+        row = [p["codec"], p["setting"], f"{p['bytes_per_pixel']:.4f}",
+               f"{p['psnr_whole_frame']:.2f}", f"{p['psnr_mask']:.2f}"]
+        for codec in codecs:
+            curve = [q for q in points if q["codec"] == codec]
+            whole = interpolate(curve, p["bytes_per_pixel"], "psnr_whole_frame")
+            mask = interpolate(curve, p["bytes_per_pixel"], "psnr_mask")
+            if p["codec"] != "relume" or whole is None:
+                row.append("")
+            else:
+                row.append(f"{whole:.2f} / {mask:.2f}, {p['psnr_whole_frame'] - whole:+.2f} / "
+                           f"{p['psnr_mask'] - mask:+.2f}")
+        lines.append("| " + " | ".join(row) + " |")
+    open(sys.argv[2], "w").write("\n".join(lines) + "\n")
+    figure, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for axis, key, title in ((axes[0], "psnr_whole_frame", "whole frame"),
+                             (axes[1], "psnr_mask", "inside the mask")):
+        for codec in ["relume"] + codecs:
+            curve = sorted((q for q in points if q["codec"] == codec),
+                           key=lambda q: q["bytes_per_pixel"])
+            axis.plot([q["bytes_per_pixel"] for q in curve], [q[key] for q in curve], "o-",
+                      label=codec)
+        axis.set_xscale("log")
+        axis.set_xlabel("bytes per pixel")
+        axis.set_ylabel("8-bit PSNR (dB)")
+        axis.set_title(title)
+        axis.grid(True, which="both", alpha=0.3)
+        axis.legend()
+    figure.tight_layout()
+    figure.savefig(sys.argv[3], dpi=110)
+
+
+if __name__ == "__main__":
+    main()
