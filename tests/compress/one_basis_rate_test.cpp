@@ -1,0 +1,81 @@
+// The one-basis model under a rate target (compress/rate_control.hpp with only the one-basis
+// model weighed): a byte target lands just under its bytes, a PSNR target is reached, and the
+// container written holds exactly the field that was measured.
+#include <gtest/gtest.h>
+
+#include <relume/container.hpp>
+
+#include "compress/rate_control.hpp"
+#include "model/field_psnr.hpp"
+#include "model/random_compressed_field.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+// 48 x 40 pixels, 3 channels, 24 lights: a random field of 2 clusters, 3 terms, with noise.
+ReflectanceField sample_original() {
+  RandomFieldShape shape;
+  shape.width = 48;
+  shape.height = 40;
+  shape.lights = 24;
+  shape.clusters = 2;
+  shape.terms = 3;
+  shape.residual_per_function = 2;
+  return testing::noisy_original(random_compressed_field(shape), 0.01);
+}
+
+RateTarget one_basis_target() {
+  RateTarget target;
+  target.clustered = false;
+  target.region = std::vector<std::uint8_t>(48 * 40, 1);
+  return target;
+}
+
+TEST(OneBasisRate, AByteTargetLandsWithinTwoPercentUnderItsBytes) {
+  const ReflectanceField original = sample_original();
+  CompressionOptions options;
+  options.clustering.quiet = true;
+  RateTarget target = one_basis_target();
+  target.bytes = 12000;
+  CompressionStats stats;
+  const TargetSearch search =
+      compress_to_rate_target(original, options, target, ContainerOptions{}, nullptr, stats);
+  EXPECT_EQ(search.field.clusters, 1);
+  EXPECT_FALSE(search.field.coded_weights.empty());
+  testing::TempDir dir;
+  write_container(dir / "t.relume", search.field);
+  const std::uint64_t bytes = std::filesystem::file_size(dir / "t.relume");
+  EXPECT_LE(bytes, 12000u);
+  EXPECT_GE(bytes, 0.98 * 12000);
+  // The file holds the field that was measured.
+  const double measured = search.explanation["chosen"]["point"]["psnr_8bit"].get<double>();
+  EXPECT_NEAR(psnr_8bit(original, read_container(dir / "t.relume"), 1.0, all_residual_entries, 0,
+                        target.region)
+                  .masked,
+              measured, 1e-9);
+}
+
+TEST(OneBasisRate, APsnrTargetIsReachedWithFewerBytesThanAHigherOne) {
+  const ReflectanceField original = sample_original();
+  CompressionOptions options;
+  options.clustering.quiet = true;
+  std::uint64_t previous = 0;
+  for (const double psnr : {30.0, 36.0}) {
+    RateTarget target = one_basis_target();
+    target.psnr = psnr;
+    CompressionStats stats;
+    const TargetSearch search =
+        compress_to_rate_target(original, options, target, ContainerOptions{}, nullptr, stats);
+    const double reached = psnr_8bit(original, search.field, 1.0, all_residual_entries, 0,
+                                     target.region)
+                               .masked;
+    EXPECT_GE(reached, psnr);
+    const std::uint64_t bytes = plan_container(search.field, ContainerOptions{}).file_bytes;
+    EXPECT_GT(bytes, previous);
+    previous = bytes;
+  }
+}
+
+}  // namespace
+}  // namespace relume
