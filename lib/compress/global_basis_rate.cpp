@@ -7,7 +7,6 @@
 #include "compress/global_basis.hpp"
 #include "container/container.hpp"
 #include "container/weight_plane_coding.hpp"
-#include "model/field_psnr.hpp"
 
 namespace relume {
 namespace {
@@ -40,11 +39,10 @@ class PlanesCurve {
     code_weights_as_planes(field, plane_bytes, threads_);
     PlanesRatePoint point;
     point.plane_bytes = field.coded_weights.codestream.size();
-    point.bytes = plan_container(field, container_).file_bytes;
-    point.error = relative_error(original_, field, true, all_residual_entries, threads_).mean;
-    point.psnr = psnr_8bit(original_, field, target_.psnr_white, all_residual_entries, threads_,
-                           target_.region)
-                     .masked;
+    const StoredMeasure stored = measure_stored(original_, field, target_, container_, threads_);
+    point.bytes = stored.bytes;
+    point.error = stored.error;
+    point.psnr = stored.psnr;
     points_.push_back(point);
     return {std::move(field), point};
   }

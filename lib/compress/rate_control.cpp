@@ -63,11 +63,10 @@ class RateCurve {
     const CompressedField field = at(entries);
     RatePoint point;
     point.entries = field.residual.nonzeros();
-    point.bytes = plan_container(field, container_).file_bytes;
-    point.error = relative_error(original_, field, true, all_residual_entries, threads_).mean;
-    point.psnr = psnr_8bit(original_, field, target_.psnr_white, all_residual_entries, threads_,
-                           target_.region)
-                     .masked;
+    const StoredMeasure stored = measure_stored(original_, field, target_, container_, threads_);
+    point.bytes = stored.bytes;
+    point.error = stored.error;
+    point.psnr = stored.psnr;
     points_.push_back(point);
     measured_.emplace(entries, point);
     return point;
@@ -196,6 +195,18 @@ void try_global_basis(const ReflectanceField& field, const CompressionOptions& o
 }
 
 }  // namespace
+
+StoredMeasure measure_stored(const ReflectanceField& original, const CompressedField& field,
+                             const RateTarget& target, const ContainerOptions& container,
+                             unsigned threads) {
+  StoredMeasure measure;
+  measure.bytes = plan_container(field, container).file_bytes;
+  measure.error = relative_error(original, field, true, all_residual_entries, threads).mean;
+  measure.psnr =
+      psnr_8bit(original, field, target.psnr_white, all_residual_entries, threads, target.region)
+          .masked;
+  return measure;
+}
 
 TargetSearch compress_to_rate_target(const ReflectanceField& field,
                                      const CompressionOptions& options, const RateTarget& target,

@@ -45,6 +45,18 @@ struct RateTarget {
   std::function<std::string(const CompressionOptions&, const CompressionStats&)> parameters_json;
 };
 
+// A candidate as stored: its container's bytes (written with `container`), Eq. 16 over the
+// masked functions and the 8-bit PSNR inside the target's region. Every rate-target point is
+// measured so.
+struct StoredMeasure {
+  std::uint64_t bytes = 0;
+  double error = 0;
+  double psnr = 0;
+};
+StoredMeasure measure_stored(const ReflectanceField& original, const CompressedField& field,
+                             const RateTarget& target, const ContainerOptions& container,
+                             unsigned threads);
+
 // Exactly one of target.bytes and target.psnr must be > 0 (Error otherwise). `options` gives
 // everything but terms, clusters and the residual budget; with `quantization`, every candidate is
 // quantized within it before its residual is cut. `stats` receives the chosen run's statistics.
