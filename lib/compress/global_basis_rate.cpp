@@ -7,6 +7,7 @@
 #include "compress/global_basis.hpp"
 #include "container/container.hpp"
 #include "container/weight_plane_coding.hpp"
+#include "core/interruption.hpp"
 
 namespace relume {
 namespace {
@@ -34,7 +35,9 @@ class PlanesCurve {
   std::uint64_t fixed_bytes() const { return fixed_bytes_; }
 
   // The field with its planes coded in at most `plane_bytes`, measured.
+  // A safe point for SIGINT / SIGTERM before each coding (a few seconds each on a whole frame).
   std::pair<CompressedField, PlanesRatePoint> measure(std::uint64_t plane_bytes) {
+    throw_if_interrupted();
     CompressedField field = base_;
     code_weights_as_planes(field, plane_bytes, threads_);
     PlanesRatePoint point;
