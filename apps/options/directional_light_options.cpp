@@ -19,19 +19,26 @@ CLI::Option* add_light_direction_option(CLI::App& command, DirectionalLightOptio
       ->expected(3);
 }
 
-void add_light_color_options(CLI::App& command, DirectionalLightOptions& options) {
-  command
-      .add_option("--light-color", options.color,
+void add_light_color_options(CLI::App& command, DirectionalLightOptions& options,
+                             CLI::Option* direction) {
+  CLI::Option* color =
+      command
+          .add_option("--light-color", options.color,
                   "Colour and intensity of the moved light, r,g,b (1,1,1 = one captured light)")
-      ->delimiter(',')
-      ->expected(3)
-      ->capture_default_str();
-  command
-      .add_option("--spread", options.spread_degrees,
-                  "Angular radius of the moved light in degrees (0 = a point light; larger is a "
-                  "softer disc light)")
-      ->check(CLI::Range(0.0, 90.0))
-      ->capture_default_str();
+          ->delimiter(',')
+          ->expected(3)
+          ->capture_default_str();
+  CLI::Option* spread =
+      command
+          .add_option("--spread", options.spread_degrees,
+                      "Angular radius of the moved light in degrees (0 = a point light; larger "
+                      "is a softer disc light)")
+          ->check(CLI::Range(0.0, 90.0))
+          ->capture_default_str();
+  if (direction) {
+    color->needs(direction);
+    spread->needs(direction);
+  }
 }
 
 std::string format_direction(const Eigen::Vector3d& d) {

@@ -25,8 +25,10 @@ struct DirectionalLightOptions {
 
 // Adds --light-dir; returns it so callers can make it exclusive with other light sources.
 CLI::Option* add_light_direction_option(CLI::App& command, DirectionalLightOptions& options);
-// Adds --light-color and --spread.
-void add_light_color_options(CLI::App& command, DirectionalLightOptions& options);
+// Adds --light-color and --spread; with `direction` (the --light-dir option), both are usage
+// errors without it instead of being ignored.
+void add_light_color_options(CLI::App& command, DirectionalLightOptions& options,
+                             CLI::Option* direction = nullptr);
 
 // The light vector of a light from `direction` with the options' colour and spread. Notes a
 // direction outside the captured cover (it is lit from the nearest point of the cover's rim)

@@ -23,13 +23,15 @@ void add_light_source_options(CLI::App& command, LightSourceOptions& options) {
   lights->excludes(env)->excludes(direction);
   env->excludes(lights)->excludes(direction);
   direction->excludes(lights)->excludes(env);
-  add_light_color_options(command, options.moved_light);
+  add_light_color_options(command, options.moved_light, direction);
   command
       .add_option("--layout", options.layout,
                   "Environment map layout: auto (from the aspect ratio), latlong, angular, cross")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(env);
   add_rotation_option(command, options.rotate,
-                      "Rotate the environment about the up axis (+y) by this many degrees");
+                      "Rotate the environment about the up axis (+y) by this many degrees")
+      ->needs(env);
 }
 
 LightRgb resolve_light_vector(const LightSourceOptions& options,

@@ -134,6 +134,26 @@ TEST_F(RelightCommands, BadInputIsRefusedWithAMessageAndNoOutput) {
   EXPECT_FALSE(fs::exists(path("short.exr")));
 }
 
+// Options of a light source that was not chosen were ignored without a word (issue 35): a moved
+// light's colour and spread need --light-dir, a map's layout and rotation need --env.
+TEST_F(RelightCommands, OptionsOfAnotherLightSourceAreUsageErrors) {
+  const std::string env = " --env '" + path("sky.exr") + "'";
+  const std::string direction = " --light-dir 0,0,1";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {env + " --spread 5", "--spread requires --light-dir"},
+      {env + " --light-color 2,2,2", "--light-color requires --light-dir"},
+      {direction + " --layout latlong", "--layout requires --env"},
+      {direction + " --rotate 90", "--rotate requires --env"}};
+  for (const auto& [options, message] : cases)
+    for (const std::string& command : {"relight '" + path("scene.relume") + "'",
+                                      "lights --dirs '" + path("scene") + "'"}) {
+      const auto result = testing::run_relume(command + options + " -o '" + path("x.txt") + "'");
+      EXPECT_EQ(result.exit_code, 2) << command << options << "\n" << result.output;
+      EXPECT_NE(result.output.find(message), std::string::npos) << result.output;
+      EXPECT_FALSE(fs::exists(path("x.txt")));
+    }
+}
+
 // Black pixels (a masked background) under 2^128 became NaN and indexed the sRGB table (a
 // segfault, exit 139). Exposures and light colours out of range are usage errors naming
 // the option and the value; the largest exposure allowed still writes.

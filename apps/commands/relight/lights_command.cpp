@@ -117,15 +117,17 @@ const CommandRegistration registration{
       auto* direction = add_light_direction_option(*command, options->moved_light);
       env->excludes(direction);
       direction->excludes(env);
-      add_light_color_options(*command, options->moved_light);
+      add_light_color_options(*command, options->moved_light, direction);
       command
           ->add_option("--layout", options->layout,
                        "Map layout: auto (2:1 latlong, 1:1 angular, 3:4 vertical cross), latlong, "
                        "angular or cross")
-          ->capture_default_str();
+          ->capture_default_str()
+          ->needs(env);
       add_rotation_option(*command, options->rotate,
                           "Rotate the environment about the up axis (+y) by this many degrees, "
-                          "counter-clockwise seen from above (+90 brings light from +x to -z)");
+                          "counter-clockwise seen from above (+90 brings light from +x to -z)")
+          ->needs(env);
       command->add_option(
           "-o,--output", options->output,
           "Write the rows here (atomically) and the summary to stdout; default: rows "
