@@ -1,6 +1,7 @@
 // Implementation of the one-basis model (see global_basis.hpp).
 #include "compress/global_basis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <relume/error.hpp>
 
@@ -41,8 +42,8 @@ Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms
   return leading_right_singular_vectors(inside, terms);
 }
 
-CompressedField global_basis_field(const ReflectanceField& field,
-                                   const Eigen::MatrixXd& directions, int terms) {
+CompressedField global_basis_field(const ReflectanceField& field, const Eigen::MatrixXd& directions,
+                                   int terms) {
   if (terms < 1 || terms > directions.rows() || directions.cols() != field.lights())
     throw Error("a global basis of " + std::to_string(terms) + " terms from " +
                 std::to_string(directions.rows()) + " directions of " +
@@ -55,34 +56,47 @@ CompressedField global_basis_field(const ReflectanceField& field,
   out.lights = field.lights();
   out.terms = terms;
   out.clusters = 1;
-  out.mask = field.mask.empty() ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1)
-                                : field.mask;
+  out.mask =
+      field.mask.empty() ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1) : field.mask;
   out.directions = field.directions;
   out.intensities = field.intensities;
   out.non_negative = (field.values.array() >= 0.0f).all();
 
-  // The basis as 12-bit integers times one scale per function.
-  ValueQuantization& quantization = out.quantization;
-  quantization.basis_bits = global_basis_bits;
-  const double largest_integer = std::ldexp(1.0, global_basis_bits - 1) - 1;
-  Eigen::MatrixXf basis(terms, out.lights);
-  for (int j = 0; j < terms; ++j) {
-    const double largest = std::max(directions.row(j).cwiseAbs().maxCoeff(), 1e-30);
-    const float scale = float(largest / largest_integer);
-    quantization.basis_scales.push_back(scale);
-    for (int i = 0; i < out.lights; ++i)
-      basis(j, i) = float(std::round(directions(j, i) / scale) * scale);
-  }
-  out.bases.resize(std::size_t(terms) * std::size_t(out.lights));
-  for (int j = 0; j < terms; ++j)
-    for (int i = 0; i < out.lights; ++i) out.bases[std::size_t(j) * out.lights + i] = basis(j, i);
-
+  // Each function's projection on the unquantized basis: the rank-`terms` fit.
   out.stored_function = stored_functions(field);
   out.cluster.assign(out.stored_function.size(), 0);
   out.weights.resize(Eigen::Index(out.stored_function.size()), terms);
-  const Eigen::MatrixXf basis_t = basis.transpose();
-  for (std::size_t r = 0; r < out.stored_function.size(); ++r)
-    out.weights.row(Eigen::Index(r)) = field.values.row(out.stored_function[r]) * basis_t;
+  const Eigen::MatrixXf exact_t = directions.topRows(terms).transpose().cast<float>();
+  double field_energy = 0;
+  for (std::size_t r = 0; r < out.stored_function.size(); ++r) {
+    const auto values = field.values.row(out.stored_function[r]);
+    field_energy += double(values.squaredNorm());
+    out.weights.row(Eigen::Index(r)) = values * exact_t;
+  }
+  // A basis error d in term j costs |W[:,j]|^2 |d|^2 in the light images. The steps are
+  // allotted so each term's share is equal (reverse water-filling: step_j ~ 1 / |W[:,j]|) and
+  // all of them together add `basis_error_share` to the error of truncating at `terms`; never
+  // finer than 12 bits of the term's largest value (the whole basis, or a flat field).
+  const double rows = double(std::max<std::size_t>(out.stored_function.size(), 1));
+  const Eigen::VectorXd term_energy = out.weights.cast<double>().colwise().squaredNorm();
+  const double truncation = std::max(0.0, field_energy - term_energy.sum()) / (rows * out.lights);
+  const double basis_error = basis_error_share * truncation;  // per light-image value
+  ValueQuantization& quantization = out.quantization;
+  quantization.basis_bits = global_basis_bits;
+  const double largest_integer = std::ldexp(1.0, global_basis_bits - 1) - 1;
+  out.bases.resize(std::size_t(terms) * std::size_t(out.lights));
+  for (int j = 0; j < terms; ++j) {
+    const double largest = std::max(directions.row(j).cwiseAbs().maxCoeff(), 1e-30);
+    double step = largest / largest_integer;
+    if (term_energy[j] > 0)  // at most 4x the largest value: every integer is 0 by then
+      step = std::clamp(std::sqrt(12 * rows * basis_error / (terms * term_energy[j])), step,
+                        4 * largest);
+    const float scale = float(step);
+    quantization.basis_scales.push_back(scale);
+    for (int i = 0; i < out.lights; ++i)
+      out.bases[std::size_t(j) * out.lights + i] =
+          float(std::round(directions(j, i) / scale) * scale);
+  }
   out.residual.row_offsets.assign(out.stored_function.size() + 1, 0);
   return out;
 }

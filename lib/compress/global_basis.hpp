@@ -11,18 +11,22 @@
 
 namespace relume {
 
-// The basis stored with 12-bit integers, one scale per basis function: its error is far below
-// what the coded weights add, at a quarter of float32's bytes.
+// The basis is stored as integers of at most 12 bits times one step per basis function. The
+// steps are as coarse as keeps the basis's error (weighted by each term's weight energy) at this
+// share of the error of truncating the basis: negligible next to what the coded weights add, at
+// about half the bytes of a fixed 12 bits (3.7 against 7.2 KB for 48 terms of 96 lights).
 inline constexpr int global_basis_bits = 12;
+inline constexpr double basis_error_share = 0.01;
 
 // The stored functions of a field: every function inside the mask with some energy. Their
 // leading right singular vectors, `terms` rows (terms <= lights), strongest first: a basis of k
 // terms is the first k rows of a larger one.
 Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms);
 
-// The field as the first `terms` rows of `directions` (global_basis_directions) and each stored
-// function's projection on them; W is float32 values until the container codes it.
-CompressedField global_basis_field(const ReflectanceField& field,
-                                   const Eigen::MatrixXd& directions, int terms);
+// The field as the first `terms` rows of `directions` (global_basis_directions), quantized, and
+// each stored function's projection on the unquantized rows (the basis's quantization error is
+// the one budgeted above); W is float32 values until the container codes it.
+CompressedField global_basis_field(const ReflectanceField& field, const Eigen::MatrixXd& directions,
+                                   int terms);
 
 }  // namespace relume

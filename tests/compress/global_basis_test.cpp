@@ -1,0 +1,85 @@
+// The one-basis model's basis quantization (compress/global_basis.hpp): steps as coarse as keep
+// the basis's error at basis_error_share of the truncation error, finer for the strong terms,
+// and the 12-bit steps of each term's largest value when nothing is truncated.
+#include "compress/global_basis.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "model/random_compressed_field.hpp"
+#include "support/test_support.hpp"
+
+namespace relume {
+namespace {
+
+ReflectanceField sample_original() {
+  RandomFieldShape shape;
+  shape.width = 40;
+  shape.height = 32;
+  shape.lights = 20;
+  shape.clusters = 3;
+  shape.terms = 3;
+  shape.residual_per_function = 2;
+  return testing::noisy_original(random_compressed_field(shape), 0.01);
+}
+
+// Mean squared difference per value between the field and W F over the stored functions.
+double stored_error(const ReflectanceField& original, const CompressedField& field,
+                    const Eigen::MatrixXd& basis) {
+  double sum = 0;
+  for (std::size_t r = 0; r < field.stored_function.size(); ++r) {
+    const Eigen::RowVectorXd x = original.values.row(field.stored_function[r]).cast<double>();
+    const Eigen::RowVectorXd w = field.weights.row(Eigen::Index(r)).cast<double>();
+    sum += (x - w * basis).squaredNorm();
+  }
+  return sum / (double(field.stored_function.size()) * original.lights());
+}
+
+Eigen::MatrixXd stored_basis(const CompressedField& field) {
+  Eigen::MatrixXd basis(field.terms, field.lights);
+  for (int j = 0; j < field.terms; ++j)
+    for (int i = 0; i < field.lights; ++i)
+      basis(j, i) = field.bases[std::size_t(j) * field.lights + i];
+  return basis;
+}
+
+// The largest integer of term j as stored.
+double largest_integer(const CompressedField& field, int j) {
+  double largest = 0;
+  for (int i = 0; i < field.lights; ++i)
+    largest = std::max(largest, std::abs(field.bases[std::size_t(j) * field.lights + i]) /
+                                    double(field.quantization.basis_scales[std::size_t(j)]));
+  return largest;
+}
+
+TEST(GlobalBasis, TheQuantizedBasisAddsAboutItsShareToTheTruncationError) {
+  const ReflectanceField original = sample_original();
+  const Eigen::MatrixXd directions = global_basis_directions(original, original.lights());
+  const int terms = 12;  // past the 9 of the random clusters: the last terms are noise
+  const CompressedField field = global_basis_field(original, directions, terms);
+  ASSERT_EQ(field.quantization.basis_bits, global_basis_bits);
+  const double truncation = stored_error(original, field, directions.topRows(terms));
+  const double quantized = stored_error(original, field, stored_basis(field));
+  ASSERT_GT(truncation, 0);
+  EXPECT_GT(quantized, truncation * (1 + 0.3 * basis_error_share));
+  EXPECT_LT(quantized, truncation * (1 + 3 * basis_error_share));
+  // Far coarser than 12 bits where little weight rides on a term, finer on the strongest.
+  const double twelve_bits = std::ldexp(1.0, global_basis_bits - 1) - 1;
+  EXPECT_LT(largest_integer(field, terms - 1), twelve_bits / 8);
+  EXPECT_GT(largest_integer(field, 0), 4 * largest_integer(field, terms - 1));
+}
+
+TEST(GlobalBasis, TheWholeBasisKeepsTwelveBitsOfEachTerm) {
+  const ReflectanceField original = sample_original();
+  const Eigen::MatrixXd directions = global_basis_directions(original, original.lights());
+  const CompressedField field = global_basis_field(original, directions, original.lights());
+  for (int j = 0; j < field.terms; ++j)
+    EXPECT_NEAR(largest_integer(field, j), std::ldexp(1.0, global_basis_bits - 1) - 1, 1e-3);
+  const double mean_square = original.values.cast<double>().squaredNorm() /
+                             double(original.values.size());
+  EXPECT_LT(stored_error(original, field, stored_basis(field)), 1e-6 * mean_square);
+}
+
+}  // namespace
+}  // namespace relume
