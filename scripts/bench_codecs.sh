@@ -7,7 +7,7 @@
 # over the whole frame and inside the ball's mask, the same definition for all.
 #   scripts/bench_codecs.sh [BUILD_DIR] [OUT_DIR]
 # BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
-# all, what a user gets). Writes OUT_DIR/codecs.jsonl (one line per point), OUT_DIR/codecs.md (the
+# all, what a user gets). The codecs' points are kept in OUT_DIR/codec_*.json and reused. Writes OUT_DIR/codecs.jsonl (one line per point), OUT_DIR/codecs.md (the
 # table, each codec interpolated at relume's bytes) and OUT_DIR/codecs.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,8 +24,22 @@ mkdir -p "$out"
   /usr/bin/python3 scripts/normalize_to_8bit.py "$ball" "$out/ball8_nomask" --no-mask
 points="$out/codecs.jsonl"
 : > "$points"
-/usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" av1 50,40,30,20,10 >> "$points"
-/usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" x265 38,32,26,20,14 >> "$points"
+# A codec's point depends on the images and its setting only: each is kept and reused.
+codec() {
+  local name="$1" crf
+  shift
+  for crf in "$@"; do
+    local kept="$out/codec_${name}_crf$crf.json"
+    [ -s "$kept" ] || {
+      /usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" "$name" "$crf" \
+        > "$kept.part"
+      mv "$kept.part" "$kept"
+    }
+    cat "$kept" >> "$points"
+  done
+}
+codec av1 50 40 30 20 10 4
+codec x265 38 32 26 20 14 8 4
 for rate in $rates; do
   start=$(date +%s%N)
   "$relume" -q compress "$out/ball8_nomask" -o "$out/ball_$rate.relume" -y --linear \
