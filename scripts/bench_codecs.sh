@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# relume's rate targets against the video codecs a user already has (issue 32): the shared ball
-# normalised to 8 bit without its mask (the whole frame stored, scripts/normalize_to_8bit.py),
-# compressed by `relume compress --linear --target-bytes-per-pixel B` at each rate, and by FFmpeg's
-# libaom AV1 (yuv444p) and x265 (yuv444p10le) over the light images as one video
-# (scripts/codec_curve.py). Bytes per pixel (file bytes / (width x height)) against the 8-bit PSNR
-# over the whole frame and inside the ball's mask, the same definition for all.
+# relume against the video codecs a user already has (issue 32): the shared ball normalised to
+# 8 bit without its mask (the whole frame stored, scripts/normalize_to_8bit.py), compressed by
+# `relume compress --linear` (the default, whose time a rate target is held to) and with
+# `--target-bytes-per-pixel B` at each rate, and by FFmpeg's libaom AV1 (yuv444p) and x265
+# (yuv444p10le) over the light images as one video (scripts/codec_curve.py). Bytes per pixel
+# (file bytes / (width x height)) against the 8-bit PSNR over the whole frame and inside the
+# ball's mask, the same definition for all.
 #   scripts/bench_codecs.sh [BUILD_DIR] [OUT_DIR]
 # BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
-# all, what a user gets). The codecs' points are kept in OUT_DIR/codec_*.json and reused. Writes OUT_DIR/codecs.jsonl (one line per point), OUT_DIR/codecs.md (the
-# table, each codec interpolated at relume's bytes) and OUT_DIR/codecs.png.
+# all, what a user gets). The codecs' points are kept in OUT_DIR/codec_*.json and reused.
+# Writes OUT_DIR/codecs.jsonl (one line per point, relume's with its seconds), OUT_DIR/codecs.md
+# (the table, each codec interpolated at relume's bytes) and OUT_DIR/codecs.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -40,24 +42,31 @@ codec() {
 }
 codec av1 50 40 30 20 10 4
 codec x265 38 32 26 20 14 8 4
-for rate in $rates; do
+# One relume point: NAME, then the compress options besides the input and the PSNR mask; the
+# seconds of the whole command are recorded with it.
+relume_point() {
+  local name="$1" start milliseconds
+  shift
   start=$(date +%s%N)
-  "$relume" -q compress "$out/ball8_nomask" -o "$out/ball_$rate.relume" -y --linear \
-    --psnr-mask "$ball/mask.png" --target-bytes-per-pixel "$rate" --target-models "$models" \
-    --report "$out/ball_$rate.json"
+  "$relume" -q compress "$out/ball8_nomask" -o "$out/ball_$name.relume" -y --linear \
+    --psnr-mask "$ball/mask.png" --report "$out/ball_$name.json" "$@"
   milliseconds=$(( ($(date +%s%N) - start) / 1000000 ))
-  /usr/bin/python3 - "$out/ball_$rate.json" "$rate" "$milliseconds" "$models" >> "$points" <<'PY'
+  /usr/bin/python3 - "$out/ball_$name.json" "$milliseconds" "$*" >> "$points" <<'PY'
 import json, sys
 report = json.load(open(sys.argv[1]))
-chosen = report["rate_target"]["chosen"]
-model = "one basis" if chosen["clusters"] == 1 and report["field"].get("dark_pixels", 0) == 0 \
-    and report["residual_nonzeros"] == 0 else "clustered"
-print(json.dumps({"codec": "relume", "setting": f"target {sys.argv[2]} B/px ({sys.argv[4]}): "
-                  f"{model}, {chosen['terms']} terms, {chosen['clusters']} clusters",
+parameters = report["parameters"]
+model = "one basis" if report["sections"].get("weight_planes", 0) > 0 else "clustered"
+print(json.dumps({"codec": "relume", "setting": f"{sys.argv[3] or 'default'}: {model}, "
+                  f"{parameters['terms']} terms, {parameters['clusters']} clusters",
                   "bytes": report["bytes"], "bytes_per_pixel": report["bytes_per_pixel"],
                   "psnr_whole_frame": report["psnr_8bit"]["whole_frame"],
-                  "psnr_mask": report["psnr_8bit"]["mask"], "seconds": float(sys.argv[3]) / 1000}))
+                  "psnr_mask": report["psnr_8bit"]["mask"], "seconds": float(sys.argv[2]) / 1000}))
 PY
+}
+# A plain compression first: the default's point, and the time a rate target is held to (3x).
+relume_point default
+for rate in $rates; do
+  relume_point "$rate" --target-bytes-per-pixel "$rate" --target-models "$models"
 done
 /usr/bin/python3 scripts/codec_table.py "$points" "$out/codecs.md" "$out/codecs.png"
 cat "$out/codecs.md"
