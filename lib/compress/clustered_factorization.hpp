@@ -77,6 +77,7 @@ struct CompressionStats {
   std::int64_t all_zero = 0;
   std::size_t stored_rows = 0;
   std::size_t dark_pixels = 0;   // pixels relit by the dark model
+  bool one_basis = false;        // the one-basis model (global_basis.hpp) was stored, no clusters
   NoiseModel noise;              // as used
   float residual_threshold = 0;  // as used
   int clusters_asked = 0;

@@ -96,7 +96,16 @@ nlohmann::ordered_json compression_parameters(const CompressionOptions& options,
                                               const CompressionStats& stats,
                                               const std::string& solver) {
   const ClusteringOptions& clustering = options.clustering;
-  return {{"method", to_string(options.method)},
+  if (stats.one_basis)
+    return {{"model", "one_basis"},
+            {"clusters", 1},
+            {"terms", clustering.terms},
+            {"basis",
+             "the leading right singular vectors of the stored functions, integers of at "
+             "most 12 bits with one step per term"},
+            {"weights", "JPEG 2000 planes, coded to the rate target's bytes"}};
+  return {{"model", "clustered"},
+          {"method", to_string(options.method)},
           {"clusters_asked", clustering.clusters},
           {"clusters", stats.clusters},
           {"terms", clustering.terms},

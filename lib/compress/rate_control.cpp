@@ -283,13 +283,12 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       }
     }
   });
-  // The one-basis model keeps the noise model the grid estimated (its parameters report it).
   CompressionOptions global_options = options;
   global_options.clustering.clusters = 1;
   CompressionStats global_stats;
-  global_stats.noise = stats.noise;
   global_stats.functions = field.functions();
   global_stats.clusters_asked = global_stats.clusters = 1;
+  global_stats.one_basis = true;
   if (target.one_basis) try_global_basis(field, global_options, global_stats, target, container, tried,
                    [&](GlobalBasisFit& fit, const CompressionOptions& sized) {
                      const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr},

@@ -109,6 +109,15 @@ std::string clusters_text(const nlohmann::ordered_json& report, int clusters) {
   return text;
 }
 
+// The model stored: its clusters, or the one basis and its terms.
+std::string model_text(const nlohmann::ordered_json& report, int clusters) {
+  const nlohmann::ordered_json& parameters = report["parameters"];
+  if (parameters.value("model", "") == "one_basis")
+    return "one basis of " + std::to_string(parameters["terms"].get<int>()) +
+           " terms, weights as JPEG 2000 planes";
+  return clusters_text(report, clusters);
+}
+
 }  // namespace
 
 std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
@@ -122,32 +131,36 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
                   "functions not stored)",
                   report["error_masked"].get<double>(), report["error_all"].get<double>(),
                   static_cast<long long>(outside));
-  const nlohmann::ordered_json& noise = report["parameters"]["noise"];
-  std::string thresholds;
-  for (const auto& t : noise["dark_threshold"]) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%s%.3g", thresholds.empty() ? "" : "/", t.get<double>());
-    thresholds += value;
-  }
-  char dark[200];
-  const auto dark_pixels = static_cast<long long>(report["field"]["dark_pixels"].get<std::int64_t>());
-  if (thresholds.empty())  // a model without the dark model (one basis)
-    std::snprintf(dark, sizeof dark, ", %lld dark pixels", dark_pixels);
-  else
-    std::snprintf(dark, sizeof dark, ", %lld dark pixels (noise floor %s, %s)", dark_pixels,
+  // The clustered model's dark pixels and the noise floor that chose them (the one-basis model
+  // has neither).
+  std::string dark;
+  const nlohmann::ordered_json& parameters = report["parameters"];
+  if (parameters.contains("noise")) {
+    const nlohmann::ordered_json& noise = parameters["noise"];
+    std::string thresholds;
+    for (const auto& t : noise["dark_threshold"]) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%s%.3g", thresholds.empty() ? "" : "/", t.get<double>());
+      thresholds += value;
+    }
+    char text[200];
+    std::snprintf(text, sizeof text, ", %lld dark pixels (noise floor %s, %s)",
+                  static_cast<long long>(report["field"]["dark_pixels"].get<std::int64_t>()),
                   thresholds.c_str(), noise["estimated"].get<bool>() ? "estimated" : "given");
+    dark = text;
+  }
   const nlohmann::ordered_json& per_light = report["per_light_error_masked"];
   const std::string output = report["output"].get<std::string>();
   char line[1024];
-  std::snprintf(line, sizeof line,
-                "compressed %s -> %s: %llu bytes (%.4f of float32), %s, largest per-light error "
-                "%.3g of its function's peak, %lld negative values, %s%s, %.1f s",
-                report["input"].get<std::string>().c_str(),
-                output.empty() ? "memory" : output.c_str(),
-                static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-                report["ratio"].get<double>(), error, per_light["largest_relative"].get<double>(),
-                static_cast<long long>(per_light["negative_values"].get<std::int64_t>()),
-                clusters_text(report, clusters).c_str(), dark, report["seconds"].get<double>());
+  std::snprintf(
+      line, sizeof line,
+      "compressed %s -> %s: %llu bytes (%.4f of float32), %s, largest per-light error "
+      "%.3g of its function's peak, %lld negative values, %s%s, %.1f s",
+      report["input"].get<std::string>().c_str(), output.empty() ? "memory" : output.c_str(),
+      static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
+      report["ratio"].get<double>(), error, per_light["largest_relative"].get<double>(),
+      static_cast<long long>(per_light["negative_values"].get<std::int64_t>()),
+      model_text(report, clusters).c_str(), dark.c_str(), report["seconds"].get<double>());
   return line;
 }
 

@@ -357,6 +357,10 @@ TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
   EXPECT_GE(report["psnr_8bit"]["mask"].get<double>(), target);
   const std::uint64_t bytes = std::filesystem::file_size(dir / "p.relume");
   EXPECT_EQ(choice["chosen"]["point"]["bytes"].get<std::uint64_t>(), bytes);
+  // The parameters name the model the file holds (one basis: its weights are JPEG 2000 planes).
+  const bool planes = report["sections"]["weight_planes"].get<std::uint64_t>() > 0;
+  EXPECT_EQ(report["parameters"]["model"], planes ? "one_basis" : "clustered");
+  EXPECT_EQ(report["parameters"]["clusters"].get<int>(), read_container(dir / "p.relume").clusters);
   for (const auto& tried : choice["tried"]) {
     if (tried["met"].get<bool>()) {
       EXPECT_GE(tried["choice"]["bytes"].get<std::uint64_t>(), bytes);
