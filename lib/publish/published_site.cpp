@@ -47,6 +47,7 @@ PublishReport publish_container(const std::filesystem::path& container,
 
   PublishReport report;
   report.container_bytes = std::filesystem::file_size(container);
+  report.weights_from_planes = !field.coded_weights.empty();
   report.residual_longest_row = layout.field["residual_longest_row"].get<int>();
   report.residual_entries = layout.field["residual_entries"].get<std::uint64_t>();
   report.manifest_bytes = manifest_text.size();

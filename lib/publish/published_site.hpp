@@ -42,6 +42,9 @@ struct PublishReport {
   std::uint64_t environment_bytes = 0;     // data/env/*.bin
   int residual_longest_row = 0;            // entries of the longest residual row kept
   std::uint64_t residual_entries = 0;
+  // The container's weights are JPEG 2000 planes (the one-basis model), which browsers do not
+  // decode: the tiles carry them decoded, at many times the container's bytes.
+  bool weights_from_planes = false;
   // What a browser fetches to show the whole field at full resolution: the page, the manifest,
   // data/field.bin and the tiles of level 0 (a map adds its file when picked).
   std::uint64_t full_view_bytes() const {

@@ -127,6 +127,9 @@ class PublishedPage : public CommandSuite {
     run_or_fail("compress '" + path("scene") + "' -o '" + path("haar.relume") +
                 "' --no-mask --transform haar --noise-floor 0.02 --clusters 4 --terms 3 "
                 "--residual 5 --weights-precision float32 --residual-precision float32");
+    // One basis (a rate target's model): weights stored as JPEG 2000 planes, decoded for the page.
+    run_or_fail("compress '" + path("scene") + "' -o '" + path("one_basis.relume") +
+                "' --target-models one-basis --target-bytes 5000");
     run_or_fail("sky -o '" + path("sky.exr") + "' --width 64 --sun-radiance 200");
     run_or_fail("publish '" + path("masked.relume") + "' --env '" + path("sky.exr") + "' -o '" +
                 path("masked_site") + "' --title 'Masked scene' --tile-size 16");
@@ -192,6 +195,21 @@ TEST_F(PublishedPage, MaskedFieldUnderATurnedMapEqualsRelight) {
 TEST_F(PublishedPage, HaarFieldWithDarkPixelsEqualsRelightAtTwoCaps) {
   REQUIRE_CHROMIUM(chromium);
   for (int cap : {1, 5}) expect_page_equals_relight(chromium, "haar", "-0.4,0.2,0.9", cap, 0.5);
+}
+
+// The one-basis model relights as its container does, and publishing it says what its decoded
+// planes cost against the container (the page has no JPEG 2000 decoder).
+TEST_F(PublishedPage, OneBasisFieldEqualsRelightAndItsCostIsSaid) {
+  const CommandResult published = run_relume("publish '" + path("one_basis.relume") + "' -o '" +
+                                             path("one_basis_site") + "' --tile-size 16");
+  ASSERT_EQ(published.exit_code, 0) << published.output;
+  EXPECT_NE(published.output.find("weights are JPEG 2000 planes"), std::string::npos)
+      << published.output;
+  EXPECT_EQ(run_relume("publish '" + path("masked.relume") + "' -o '" + path("plain_site") + "'")
+                .output.find("JPEG 2000"),
+            std::string::npos);
+  REQUIRE_CHROMIUM(chromium);
+  expect_page_equals_relight(chromium, "one_basis", "0.3,0.5,0.8", 0, 1.0);
 }
 
 TEST_F(PublishedPage, SaysSoWithoutWebGl2) {

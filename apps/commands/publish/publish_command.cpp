@@ -50,6 +50,11 @@ void run_publish(const PublishCommandOptions& options) {
       report.level_bytes.empty() ? std::size_t(0) : report.level_bytes.size() - 1,
       bytes(upper_levels), bytes(report.environment_bytes), report.residual_longest_row,
       bytes(report.residual_entries));
+  if (report.weights_from_planes)
+    note(
+        "the container's weights are JPEG 2000 planes (a rate target's one-basis model), which "
+        "browsers do not decode: the tiles carry them decoded, %.0fx the container's bytes",
+        double(report.full_view_bytes()) / double(report.container_bytes));
   note("serve it with any static web server, e.g. python3 -m http.server -d %s",
        options.output.c_str());
 }
