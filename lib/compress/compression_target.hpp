@@ -43,8 +43,10 @@ struct GridCandidate {
 };
 
 // Calls `visit` for every pair of terms {2, 4, 8} (below the light count) and clusters
-// {32, 64, 128}, each factored by compress_field with `options` otherwise.
+// {32, 64, 128}, in that order, each factored by compress_field with `options` otherwise; a pair
+// for which `skip(terms, clusters)` is true is neither factored nor visited.
 void for_each_grid_candidate(const ReflectanceField& field, const CompressionOptions& options,
+                             const std::function<bool(int terms, int clusters)>& skip,
                              const std::function<void(GridCandidate&)>& visit);
 
 // Each residual entry's error reduction: value^2 times its row's weight (1 / ||R[p,:]||^2 for

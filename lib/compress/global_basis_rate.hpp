@@ -1,7 +1,7 @@
 // The one-basis model (global_basis.hpp) fitted to a rate target: for a basis size, the weight
 // planes' codestream is given the bytes the container has left (a byte target) or the fewest
-// bytes whose PSNR reaches the target (bisection on the bytes). The rate targets
-// (rate_control.hpp) try it at several basis sizes beside the clustered candidates.
+// bytes whose PSNR reaches the target (regula falsi on the logarithm of the bytes). The rate
+// targets (rate_control.hpp) try it at several basis sizes beside the clustered candidates.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,15 +20,25 @@ struct PlanesRatePoint {
   double psnr = 0;                // 8-bit, inside the target's region
 };
 
+// Where a fit starts, learned from the fit of another basis size: the container's bytes beyond
+// its fixed sections and codestream, per plane (zstd shaves the codestream's per-plane markers;
+// the header's digits vary), and for a PSNR target the codestream bytes that reached it. Zero:
+// nothing known.
+struct PlanesFitStart {
+  double overhead_per_plane = 0;
+  std::uint64_t plane_bytes = 0;
+};
+
 struct GlobalBasisFit {
   CompressedField field;  // its weights coded at `point`
   PlanesRatePoint point;
   bool met = false;
   std::vector<PlanesRatePoint> points;  // every point measured, in order
+  PlanesFitStart learned;               // where the fit of a neighbouring size may start
 };
 
-// The basis sizes tried for a field of `lights` lights, ascending: 4, 8, 16, 24, 32, 48, 64, 96,
-// 128, 192, 256, ... up to the light count.
+// The basis sizes a rate target may try for a field of `lights` lights, ascending: 4, 8, 16, 24,
+// 32, 48, 64, 96, 128, 192, 256, ... up to the light count.
 std::vector<int> global_basis_sizes(int lights);
 
 // The field with the first `terms` of `directions` (global_basis_directions) and its weight planes
@@ -37,6 +47,7 @@ std::vector<int> global_basis_sizes(int lights);
 // most for a PSNR target).
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                 int terms, const RateTarget& target,
-                                const ContainerOptions& container, unsigned threads);
+                                const ContainerOptions& container, unsigned threads,
+                                const PlanesFitStart& start = {});
 
 }  // namespace relume

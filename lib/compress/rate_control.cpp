@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <map>
+#include <optional>
 #include <relume/error.hpp>
 #include <utility>
 
@@ -136,8 +138,7 @@ std::string region_text(const std::vector<std::uint8_t>& region) {
 // Whether `a` is a better choice than `b` for the target.
 bool better(const CurveChoice& a, const CurveChoice& b, const RateTarget& target) {
   if (a.met != b.met) return a.met;
-  if (target.bytes > 0)
-    return a.met ? a.point.psnr > b.point.psnr : a.point.bytes < b.point.bytes;
+  if (target.bytes > 0) return a.met ? a.point.psnr > b.point.psnr : a.point.bytes < b.point.bytes;
   return a.met ? a.point.bytes < b.point.bytes : a.point.psnr > b.point.psnr;
 }
 
@@ -148,13 +149,15 @@ nlohmann::ordered_json to_json(const PlanesRatePoint& point) {
           {"psnr_8bit", point.psnr}};
 }
 
-// The one-basis model at ascending basis sizes, each fitted to the target and offered to `offer`
-// with its options. The sizes stop once two in a row are worse than the best of them, and where
-// the weight planes would not fit in memory. `stats`: what the model's parameters record.
-void try_global_basis(const ReflectanceField& field, const CompressionOptions& options,
-                      const CompressionStats& stats, const RateTarget& target,
-                      const ContainerOptions& container, nlohmann::ordered_json& tried,
-                      const std::function<void(GlobalBasisFit&, const CompressionOptions&)>& offer) {
+// The one-basis model fitted to the target at basis sizes chosen by hill climbing: from the
+// middle of global_basis_sizes, to the neighbouring size that does better until neither does
+// (the PSNR at given bytes rises with the size until the weights' bytes outweigh it). Each fit
+// is offered to `offer` with its options; sizes whose weight planes would not fit in memory are
+// not tried. `stats`: what the model's parameters record.
+void try_global_basis(
+    const ReflectanceField& field, const CompressionOptions& options, const CompressionStats& stats,
+    const RateTarget& target, const ContainerOptions& container, nlohmann::ordered_json& tried,
+    const std::function<void(GlobalBasisFit&, const CompressionOptions&)>& offer) {
   const unsigned threads = options.clustering.threads;
   std::vector<int> sizes = global_basis_sizes(field.lights());
   // The planes, their integers, OpenJPEG's copy and the decoded floats: about 16 bytes a sample.
@@ -163,15 +166,18 @@ void try_global_basis(const ReflectanceField& field, const CompressionOptions& o
   while (!sizes.empty() && per_term * std::uint64_t(sizes.back()) > budget) sizes.pop_back();
   if (sizes.empty()) return;
   const Eigen::MatrixXd directions = global_basis_directions(field, sizes.back());
-  std::optional<CurveChoice> best_here;
-  int worse_in_a_row = 0;
-  for (const int terms : sizes) {
+  std::map<std::size_t, CurveChoice> done;  // by index into sizes
+  PlanesFitStart start;
+  const auto evaluate = [&](std::size_t index) -> const CurveChoice& {
+    if (const auto found = done.find(index); found != done.end()) return found->second;
+    const int terms = sizes[index];
     CompressionOptions sized = options;
     sized.clustering.terms = terms;
     ContainerOptions planned = container;
     if (target.parameters_json) planned.parameters_json = target.parameters_json(sized, stats);
-    GlobalBasisFit fit = fit_global_basis(field, directions, terms, target, planned, threads);
-    const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met};
+    GlobalBasisFit fit =
+        fit_global_basis(field, directions, terms, target, planned, threads, start);
+    start = fit.learned;
     nlohmann::ordered_json points = nlohmann::ordered_json::array();
     for (const PlanesRatePoint& point : fit.points) points.push_back(to_json(point));
     tried.push_back({{"model", "global_basis"},
@@ -186,11 +192,22 @@ void try_global_basis(const ReflectanceField& field, const CompressionOptions& o
                    "%llu bytes, %.2f dB, error %.5f%s\n",
                    terms, static_cast<unsigned long long>(fit.point.bytes), fit.point.psnr,
                    fit.point.error, fit.met ? "" : " (target not met)");
-    const bool best_size = !best_here || better(choice, *best_here, target);
-    if (best_size) best_here = choice;
+    const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met};
     offer(fit, sized);
-    worse_in_a_row = best_size ? 0 : worse_in_a_row + 1;
-    if (worse_in_a_row == 2) break;
+    return done.emplace(index, choice).first->second;
+  };
+  std::size_t at = sizes.size() / 2;
+  for (;;) {
+    std::optional<std::size_t> next;
+    for (const std::size_t neighbour : {at - 1, at + 1}) {
+      if (neighbour >= sizes.size()) continue;  // at - 1 wraps below 0
+      const CurveChoice& here = evaluate(at);
+      const CurveChoice& there = evaluate(neighbour);
+      if (better(there, here, target) && (!next || better(there, done.at(*next), target)))
+        next = neighbour;
+    }
+    if (!next) break;
+    at = *next;
   }
 }
 
@@ -230,78 +247,106 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       quantization ? target.stored_as : std::vector<StoredAs>{StoredAs{}};  // float: unused
   if (ways.empty()) throw Error("a rate target needs at least one way to store");
   if (!target.clustered && !target.one_basis) throw Error("a rate target needs a model to weigh");
-  if (target.clustered) for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
-    for (const StoredAs& way : ways) {
-      CompressedField stored = grid.full;
-      std::optional<QuantizationChoice> quantized;
-      if (quantization) {
-        QuantizationBudget budget = *quantization;
-        budget.term_increase = way.term_budget;
-        budget.relative_increase = way.quantization_budget;
-        quantized = quantize_with_budget(field, stored, budget);
-      }
-      // The weight of each stored row's entries in the ranking: inside the region or not.
-      std::vector<double> row_weight(stored.stored_rows(), 1.0);
-      if (!target.region.empty())
-        for (std::size_t r = 0; r < row_weight.size(); ++r) {
-          const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
-          row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
-        }
-      ContainerOptions planned = container;
-      if (target.parameters_json)
-        planned.parameters_json = target.parameters_json(grid.options, grid.stats);
-      RateCurve curve(field, stored, row_weight, planned, target, threads);
-      const CurveChoice choice =
-          target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
-      nlohmann::ordered_json points = nlohmann::ordered_json::array();
-      for (const RatePoint& point : curve.points())
-        points.push_back(to_json(point));
-      tried.push_back({{"model", "clustered"},
-                       {"terms", grid.options.clustering.terms},
-                       {"clusters", stored.clusters},
-                       {"term_budget", way.term_budget},
-                       {"quantization_budget", way.quantization_budget},
-                       {"met", choice.met},
-                       {"choice", to_json(choice.point)},
-                       {"points", points}});
-      if (!options.clustering.quiet)
-        std::fprintf(
-            stderr,
-            "compress: rate target: %d terms, %d clusters, term budget %g, quantization budget "
-            "%g -> %llu bytes, %.2f dB, error %.5f%s\n",
-            grid.options.clustering.terms, stored.clusters, way.term_budget,
-            way.quantization_budget, static_cast<unsigned long long>(choice.point.bytes),
-            choice.point.psnr, choice.point.error, choice.met ? "" : " (target not met)");
-      if (!best_choice || better(choice, *best_choice, target)) {
-        best_choice = choice;
-        best.field = curve.at(choice.point.entries);
-        best.quantization = quantized;
-        best.options = grid.options;
-        best_stored_as = way;
-        stats = grid.stats;
-        stats.residual_nonzeros = best.field.residual.nonzeros();
-      }
-    }
-  });
+  // The one-basis model first: what it reaches tells the grid which pairs cannot win.
   CompressionOptions global_options = options;
   global_options.clustering.clusters = 1;
   CompressionStats global_stats;
   global_stats.functions = field.functions();
   global_stats.clusters_asked = global_stats.clusters = 1;
   global_stats.one_basis = true;
-  if (target.one_basis) try_global_basis(field, global_options, global_stats, target, container, tried,
-                   [&](GlobalBasisFit& fit, const CompressionOptions& sized) {
-                     const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr},
-                                              fit.met};
-                     if (best_choice && !better(choice, *best_choice, target)) return;
-                     best_choice = choice;
-                     best.field = std::move(fit.field);
-                     best.quantization.reset();
-                     best.options = sized;
-                     best_stored_as = StoredAs{};
-                     stats = global_stats;
-                     stats.stored_rows = best.field.stored_rows();
-                   });
+  if (target.one_basis)
+    try_global_basis(
+        field, global_options, global_stats, target, container, tried,
+        [&](GlobalBasisFit& fit, const CompressionOptions& sized) {
+          const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met};
+          if (best_choice && !better(choice, *best_choice, target)) return;
+          best_choice = choice;
+          best.field = std::move(fit.field);
+          best.quantization.reset();
+          best.options = sized;
+          best_stored_as = StoredAs{};
+          stats = global_stats;
+          stats.stored_rows = best.field.stored_rows();
+        });
+  // A pair of the grid cannot win with at least the terms and clusters of a pair whose smallest
+  // container was already larger than the target's bytes, or than the fewest bytes that reached
+  // the target PSNR: more terms or clusters only add bytes. Such pairs are not factored.
+  std::vector<std::pair<int, int>> too_large;
+  nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
+  const auto cannot_win = [&](int terms, int clusters) {
+    const bool dominated =
+        std::any_of(too_large.begin(), too_large.end(), [&](const std::pair<int, int>& pair) {
+          return terms >= pair.first && clusters >= pair.second;
+        });
+    if (dominated) skipped.push_back({{"terms", terms}, {"clusters", clusters}});
+    return dominated;
+  };
+  if (target.clustered)
+    for_each_grid_candidate(field, options, cannot_win, [&](GridCandidate& grid) {
+      std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+      for (const StoredAs& way : ways) {
+        CompressedField stored = grid.full;
+        std::optional<QuantizationChoice> quantized;
+        if (quantization) {
+          QuantizationBudget budget = *quantization;
+          budget.term_increase = way.term_budget;
+          budget.relative_increase = way.quantization_budget;
+          quantized = quantize_with_budget(field, stored, budget);
+        }
+        // The weight of each stored row's entries in the ranking: inside the region or not.
+        std::vector<double> row_weight(stored.stored_rows(), 1.0);
+        if (!target.region.empty())
+          for (std::size_t r = 0; r < row_weight.size(); ++r) {
+            const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
+            row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
+          }
+        ContainerOptions planned = container;
+        if (target.parameters_json)
+          planned.parameters_json = target.parameters_json(grid.options, grid.stats);
+        RateCurve curve(field, stored, row_weight, planned, target, threads);
+        const CurveChoice choice =
+            target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
+        smallest = std::min(smallest, curve.points().front().bytes);  // no residual entry
+        nlohmann::ordered_json points = nlohmann::ordered_json::array();
+        for (const RatePoint& point : curve.points()) points.push_back(to_json(point));
+        tried.push_back({{"model", "clustered"},
+                         {"terms", grid.options.clustering.terms},
+                         {"clusters", stored.clusters},
+                         {"term_budget", way.term_budget},
+                         {"quantization_budget", way.quantization_budget},
+                         {"met", choice.met},
+                         {"choice", to_json(choice.point)},
+                         {"points", points}});
+        if (!options.clustering.quiet)
+          std::fprintf(
+              stderr,
+              "compress: rate target: %d terms, %d clusters, term budget %g, quantization budget "
+              "%g -> %llu bytes, %.2f dB, error %.5f%s\n",
+              grid.options.clustering.terms, stored.clusters, way.term_budget,
+              way.quantization_budget, static_cast<unsigned long long>(choice.point.bytes),
+              choice.point.psnr, choice.point.error, choice.met ? "" : " (target not met)");
+        if (!best_choice || better(choice, *best_choice, target)) {
+          best_choice = choice;
+          best.field = curve.at(choice.point.entries);
+          best.quantization = quantized;
+          best.options = grid.options;
+          best_stored_as = way;
+          stats = grid.stats;
+          stats.residual_nonzeros = best.field.residual.nonzeros();
+        }
+      }
+      const std::uint64_t affordable = target.bytes > 0 ? target.bytes
+                                       : best_choice && best_choice->met
+                                           ? best_choice->point.bytes
+                                           : std::numeric_limits<std::uint64_t>::max();
+      if (smallest > affordable)
+        too_large.emplace_back(grid.options.clustering.terms, grid.options.clustering.clusters);
+    });
+  if (!options.clustering.quiet && !skipped.empty())
+    std::fprintf(stderr,
+                 "compress: rate target: %zu larger (terms, clusters) pairs not factored: a "
+                 "smaller pair's smallest container was already too large\n",
+                 skipped.size());
   nlohmann::ordered_json goal;
   if (target.bytes > 0)
     goal = {{"bytes", target.bytes},
@@ -315,20 +360,24 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
       {"target", goal},
       {"method",
        target.bytes > 0
-           ? "each (terms, clusters) pair factored once with its full residual and stored in "
-             "each way tried (term and quantization budgets); the residual entries inside the "
-             "region ranked by e^2 and the most kept whose container fits (bisection); of those "
-             "that fit; then one basis for all functions at ascending sizes, its weight planes "
-             "coded as JPEG 2000 in the bytes left; of all that fit, the highest 8-bit PSNR over "
-             "the region wins"
-           : "each (terms, clusters) pair factored once with its full residual and stored in "
-             "each way tried (term and quantization budgets); the residual entries inside the "
-             "region ranked by e^2 and the fewest kept whose 8-bit PSNR reaches the target "
-             "(bisection); then one basis for all functions at ascending sizes, its weight planes "
-             "coded as JPEG 2000 in the fewest bytes that reach the target (bisection); of all "
-             "that reach it, the smallest container wins"},
+           ? "one basis for all functions, its weight planes coded as JPEG 2000 in the bytes "
+             "left, at basis sizes found by hill climbing; then each (terms, clusters) pair "
+             "factored once with its full residual (not the pairs at least as large as one whose "
+             "smallest container did not fit) and stored in each way tried (term and "
+             "quantization budgets), the residual entries inside the region ranked by e^2 and "
+             "the most kept whose container fits (bisection); of all that fit, the highest 8-bit "
+             "PSNR over the region wins"
+           : "one basis for all functions, its weight planes coded as JPEG 2000 in the fewest "
+             "bytes that reach the target (regula falsi on the bytes), at basis sizes found by "
+             "hill climbing; then each (terms, clusters) pair factored once with its full "
+             "residual (not the pairs at least as large as one whose smallest container was "
+             "larger than the best that reached it) and stored in each way tried (term and "
+             "quantization budgets), the residual entries inside the region ranked by e^2 and "
+             "the fewest kept whose 8-bit PSNR reaches the target (bisection); of all that "
+             "reach it, the smallest container wins"},
       {"met", best_choice && best_choice->met},
       {"tried", tried},
+      {"not_factored", skipped},
       {"chosen",
        {{"terms", best.options.clustering.terms},
         {"clusters", best.field.clusters},

@@ -6,9 +6,12 @@
 // number kept is found by bisection: the most entries whose container fits the bytes, or the
 // fewest whose 8-bit PSNR reaches the target. Of the ways that meet the target, the highest PSNR
 // (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the explanation says
-// so. Beside them, the one-basis model (global_basis.hpp) at ascending basis sizes, its weights
-// coded as JPEG 2000 planes fitted to the target (global_basis_rate.hpp), competes by the same
-// rule. Every rate-distortion point tried is in the explanation.
+// so. Beside them, the one-basis model (global_basis.hpp), its weights coded as JPEG 2000 planes
+// fitted to the target (global_basis_rate.hpp), competes by the same rule, at basis sizes found
+// by hill climbing. It is weighed first: a pair whose smallest container is already larger than
+// the target's bytes (or than the fewest bytes that reached the target PSNR) ends the pairs with
+// at least its terms and clusters, which are not factored. Every rate-distortion point tried is
+// in the explanation.
 #pragma once
 
 #include <cstdint>

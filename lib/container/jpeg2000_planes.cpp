@@ -187,7 +187,7 @@ std::vector<std::uint8_t> encode_jpeg2000_planes(const IntegerPlanes& planes,
   // fit, the smallest codestream made.
   const double goal = 0.995 * double(max_bytes);
   std::vector<std::uint8_t> best, smallest;
-  double ratio = std::max(1.0, raw_bytes / double(std::max<std::uint64_t>(max_bytes, 1)));
+  double ratio = std::max(1.0, raw_bytes / std::max(goal, 1.0));
   double fit_ratio = 0, fit_size = 0, over_ratio = 0, over_size = 0;  // 0: not known yet
   for (int attempt = 0; attempt < 8; ++attempt) {
     std::vector<std::uint8_t> coded = encode_at_ratio(planes, ratio, threads);
