@@ -340,6 +340,33 @@ TEST(CompressCommand, TargetBytesFitsWithTheHighestPsnrOfTheWaysTried) {
   }
 }
 
+// A byte target below the smallest container of the smallest (terms, clusters) pair: the larger
+// pairs, which only add bytes, are not factored, and the explanation lists them.
+TEST(CompressCommand, GridPairsThatCannotFitAreNotFactored) {
+  testing::TempDir dir;
+  write_field_folder(dir / "field", small_field(7));
+  const auto result = testing::run_relume(
+      "compress --noise-floor 0 --target-models clustered '" + (dir / "field").string() +
+      "' -o '" + (dir / "t.relume").string() + "' --target-bytes 600 --report '" +
+      (dir / "t.json").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("8 larger (terms, clusters) pairs not factored"), std::string::npos)
+      << result.output;
+  const nlohmann::json choice = read_json(dir / "t.json")["rate_target"];
+  EXPECT_FALSE(choice["met"].get<bool>());
+  std::set<std::pair<int, int>> factored, skipped;
+  for (const auto& tried : choice["tried"]) {
+    factored.insert({tried["terms"].get<int>(), tried["clusters"].get<int>()});
+    EXPECT_GT(tried["points"][0]["bytes"].get<std::uint64_t>(), 600u) << "its smallest container";
+  }
+  for (const auto& pair : choice["not_factored"])
+    skipped.insert({pair["terms"].get<int>(), pair["clusters"].get<int>()});
+  EXPECT_EQ(factored.size(), 1u);
+  EXPECT_EQ(factored.begin()->first, 2);
+  EXPECT_EQ(skipped.size(), 8u);
+  EXPECT_FALSE(skipped.contains(*factored.begin()));
+}
+
 // --target-psnr: the PSNR of the file as written reaches the target with the fewest bytes of the
 // pairs that reach it; a target no pair reaches is said to be missed, not claimed.
 TEST(CompressCommand, TargetPsnrIsReachedWithTheFewestBytesAndAMissIsSaid) {
