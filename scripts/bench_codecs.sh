@@ -10,7 +10,8 @@
 # BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
 # all, what a user gets). The codecs' points are kept in OUT_DIR/codec_*.json and reused.
 # Writes OUT_DIR/codecs.jsonl (one line per point, relume's with its seconds), OUT_DIR/codecs.md
-# (the table, each codec interpolated at relume's bytes) and OUT_DIR/codecs.png.
+# (the table, each codec interpolated at relume's bytes), OUT_DIR/codecs.png and OUT_DIR/light.png
+# (the most grazing light as each stores it at about 0.1 B/px, brightened).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -69,4 +70,25 @@ for rate in $rates; do
   relume_point "$rate" --target-bytes-per-pixel "$rate" --target-models "$models"
 done
 /usr/bin/python3 scripts/codec_table.py "$points" "$out/codecs.md" "$out/codecs.png"
+# To look at, not only measure: the most grazing light (the longest shadows) as stored by relume
+# at 0.1 B/px and by AV1 and x265 at about those bytes, brightened 8 times (OUT_DIR/light.png).
+if [ -s "$out/ball_0.1.relume" ]; then
+  light=$(/usr/bin/python3 -c "import numpy, sys; print(int(numpy.loadtxt(sys.argv[1])[:, 2].argmin()) + 1)" \
+    "$out/ball8_nomask/light_directions.txt")
+  /usr/bin/python3 -c "import numpy, sys; v = numpy.zeros((96, 3)); v[int(sys.argv[1]) - 1] = 1; numpy.savetxt(sys.argv[2], v, fmt='%g')" \
+    "$light" "$out/one_light.txt"
+  "$relume" -q relight "$out/ball_0.1.relume" --lights "$out/one_light.txt" -o "$out/relume_0.1_light$light.exr" -y
+  for codec in "av1 30" "x265 26"; do
+    set -- $codec
+    [ -s "$out/${1}_crf${2}_light$light.png" ] ||
+      /usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" "$1" "$2" \
+        --keep-light "$light" --keep-dir "$out" > /dev/null
+  done
+  light_name=$(printf "%03d" "$light")
+  /usr/bin/python3 scripts/codec_light_panel.py "$out/light.png" \
+    "light $light as captured=$out/ball8_nomask/$light_name.png" \
+    "relume, 0.1 B/px=$out/relume_0.1_light$light.exr" \
+    "AV1 crf 30, $(grep -o '"bytes_per_pixel": [0-9.]*' "$out/codec_av1_crf30.json" | cut -c20-24) B/px=$out/av1_crf30_light$light.png" \
+    "x265 crf 26, $(grep -o '"bytes_per_pixel": [0-9.]*' "$out/codec_x265_crf26.json" | cut -c20-24) B/px=$out/x265_crf26_light$light.png"
+fi
 cat "$out/codecs.md"

@@ -62,6 +62,10 @@ def main():
     parser.add_argument("mask", help="PNG mask (non-zero inside) for the masked PSNR")
     parser.add_argument("codec", choices=sorted(CODECS))
     parser.add_argument("crf", help="quality settings (crf), comma-separated")
+    parser.add_argument("--keep-light", type=int, metavar="N",
+                        help="also write light N (1-based) as decoded to --keep-dir, as "
+                             "CODEC_crfQ_lightN.png, to look at")
+    parser.add_argument("--keep-dir", default=".", help="folder for --keep-light (default .)")
     args = parser.parse_args()
     images = light_images(args.lights)
     lights, height, width, _ = images.shape
@@ -83,6 +87,13 @@ def main():
                  "scale=in_color_matrix=bt709:in_range=full", "-f", "rawvideo", "-pix_fmt",
                  "rgb24", decoded_path], check=True)
             decoded = np.fromfile(decoded_path, np.uint8).reshape(images.shape)
+            if args.keep_light:
+                kept = os.path.join(args.keep_dir,
+                                    f"{args.codec}_crf{crf}_light{args.keep_light}.png")
+                out = oiio.ImageBuf(oiio.ImageSpec(width, height, 3, oiio.UINT8))
+                out.set_pixels(oiio.ROI(), decoded[args.keep_light - 1])
+                if not out.write(kept):
+                    sys.exit(f"codec_curve.py: cannot write {kept}: {out.geterror()}")
             size = os.path.getsize(video)
             print(json.dumps({"codec": args.codec, "setting": f"crf {crf}", "bytes": size,
                               "bytes_per_pixel": size / (width * height),

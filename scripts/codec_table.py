@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The table and plot of scripts/bench_codecs.sh: every point of POINTS (JSON lines: codec,
-setting, bytes_per_pixel, psnr_whole_frame, psnr_mask), and for each relume point the codecs'
-PSNR interpolated at its bytes per pixel (linear in log bytes between the two codec points around
+setting, bytes_per_pixel, psnr_whole_frame, psnr_mask; relume's with seconds, its default's
+setting starting with "default"), and for each relume point the codecs' PSNR interpolated at its bytes per pixel (linear in log bytes between the two codec points around
 it; blank outside a codec's range) with relume's lead in dB.
 
 Usage: scripts/codec_table.py POINTS TABLE.md PLOT.png
@@ -31,11 +31,12 @@ def main():
         sys.exit(__doc__)
     points = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
     codecs = sorted({p["codec"] for p in points if p["codec"] != "relume"})
-    lines = ["| codec | setting | B/px | whole-frame dB | mask dB | " +
+    lines = ["| codec | setting | seconds | B/px | whole-frame dB | mask dB | " +
              " | ".join(f"{c} at equal bytes (whole / mask), relume's lead" for c in codecs) + " |",
-             "|---" * (5 + len(codecs)) + "|"]
+             "|---" * (6 + len(codecs)) + "|"]
     for p in points:
-        row = [p["codec"], p["setting"], f"{p['bytes_per_pixel']:.4f}",
+        seconds = f"{p['seconds']:.0f}" if "seconds" in p else ""
+        row = [p["codec"], p["setting"], seconds, f"{p['bytes_per_pixel']:.4f}",
                f"{p['psnr_whole_frame']:.2f}", f"{p['psnr_mask']:.2f}"]
         for codec in codecs:
             curve = [q for q in points if q["codec"] == codec]
@@ -51,11 +52,15 @@ def main():
     figure, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     for axis, key, title in ((axes[0], "psnr_whole_frame", "whole frame"),
                              (axes[1], "psnr_mask", "inside the mask")):
+        # relume's rate targets are its curve; its default (no target) is a point of its own.
+        default = [q for q in points if q["codec"] == "relume" and q["setting"].startswith("default")]
         for codec in ["relume"] + codecs:
-            curve = sorted((q for q in points if q["codec"] == codec),
+            curve = sorted((q for q in points if q["codec"] == codec and q not in default),
                            key=lambda q: q["bytes_per_pixel"])
             axis.plot([q["bytes_per_pixel"] for q in curve], [q[key] for q in curve], "o-",
-                      label=codec)
+                      label=codec + (" rate targets" if codec == "relume" else ""))
+        axis.plot([q["bytes_per_pixel"] for q in default], [q[key] for q in default], "k*",
+                  markersize=10, label="relume default")
         axis.set_xscale("log")
         axis.set_xlabel("bytes per pixel")
         axis.set_ylabel("8-bit PSNR (dB)")
