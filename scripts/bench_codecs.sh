@@ -8,7 +8,8 @@
 # ball's mask, the same definition for all.
 #   scripts/bench_codecs.sh [BUILD_DIR] [OUT_DIR]
 # BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
-# all, what a user gets). The codecs' points are kept in OUT_DIR/codec_*.json and reused.
+# all, what a user gets); BENCH_CAPTURE=pot1 (bear, harvest) takes that DiLiGenT crop's 8-bit
+# images as they are, its mask for the masked PSNR, and writes under OUT_DIR/pot1. The codecs' points are kept in OUT_DIR/codec_*.json and reused.
 # Writes OUT_DIR/codecs.jsonl (one line per point, relume's with its seconds), OUT_DIR/codecs.md
 # (the table, each codec interpolated at relume's bytes), OUT_DIR/codecs.png and OUT_DIR/light.png
 # (the most grazing light as each stores it at about 0.1 B/px, brightened).
@@ -18,13 +19,32 @@ build="${1:-build}"
 out="${2:-/tmp/relume-codecs}"
 data="${RELUME_DATA:-../shared/data}"
 relume="$build/apps/relume"
-ball="$data/olat/diligent-ball-16bit"
+capture="${BENCH_CAPTURE:-ball}"
 rates="${BENCH_RATES:-0.05 0.1 0.2 0.5 1 2}"
 models="${BENCH_MODELS:-all}"
 command -v ffmpeg >/dev/null || { echo "bench_codecs.sh: ffmpeg not found (scripts/install_deps.sh)"; exit 1; }
+case "$capture" in
+  ball) source_dir="$data/olat/diligent-ball-16bit" ;;
+  pot1 | bear | harvest)
+    source_dir="$data/olat/diligent-$capture-crop8"
+    out="$out/$capture" ;;
+  *) echo "bench_codecs.sh: BENCH_CAPTURE is ball, pot1, bear or harvest, got '$capture'"; exit 2 ;;
+esac
+mask="$source_dir/mask.png"
 mkdir -p "$out"
-[ -d "$out/ball8_nomask" ] ||
-  /usr/bin/python3 scripts/normalize_to_8bit.py "$ball" "$out/ball8_nomask" --no-mask
+# The light images as a user holds them: the ball normalised to 8 bit, a crop's 8-bit PNGs as
+# they are (its light intensities left out, as a video of the images cannot use them).
+if [ "$capture" = ball ]; then
+  frames="$out/ball8_nomask"
+  [ -d "$frames" ] || /usr/bin/python3 scripts/normalize_to_8bit.py "$source_dir" "$frames" --no-mask
+else
+  frames="$out/frames"
+  [ -d "$frames" ] || {
+    mkdir -p "$frames.part"
+    cp "$source_dir"/[0-9]*.png "$source_dir/filenames.txt" "$source_dir/light_directions.txt" "$frames.part"
+    mv "$frames.part" "$frames"
+  }
+fi
 points="$out/codecs.jsonl"
 : > "$points"
 # A codec's point depends on the images and its setting only: each is kept and reused.
@@ -34,7 +54,7 @@ codec() {
   for crf in "$@"; do
     local kept="$out/codec_${name}_crf$crf.json"
     [ -s "$kept" ] || {
-      /usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" "$name" "$crf" \
+      /usr/bin/python3 scripts/codec_curve.py "$frames" "$mask" "$name" "$crf" \
         > "$kept.part"
       mv "$kept.part" "$kept"
     }
@@ -49,10 +69,10 @@ relume_point() {
   local name="$1" start milliseconds
   shift
   start=$(date +%s%N)
-  "$relume" -q compress "$out/ball8_nomask" -o "$out/ball_$name.relume" -y --linear \
-    --psnr-mask "$ball/mask.png" --report "$out/ball_$name.json" "$@"
+  "$relume" -q compress "$frames" -o "$out/relume_$name.relume" -y --linear \
+    --psnr-mask "$mask" --report "$out/relume_$name.json" "$@"
   milliseconds=$(( ($(date +%s%N) - start) / 1000000 ))
-  /usr/bin/python3 - "$out/ball_$name.json" "$milliseconds" "$*" >> "$points" <<'PY'
+  /usr/bin/python3 - "$out/relume_$name.json" "$milliseconds" "$*" >> "$points" <<'PY'
 import json, sys
 report = json.load(open(sys.argv[1]))
 parameters = report["parameters"]
@@ -72,21 +92,21 @@ done
 /usr/bin/python3 scripts/codec_table.py "$points" "$out/codecs.md" "$out/codecs.png"
 # To look at, not only measure: the most grazing light (the longest shadows) as stored by relume
 # at 0.1 B/px and by AV1 and x265 at about those bytes, brightened 8 times (OUT_DIR/light.png).
-if [ -s "$out/ball_0.1.relume" ]; then
+if [ -s "$out/relume_0.1.relume" ]; then
   light=$(/usr/bin/python3 -c "import numpy, sys; print(int(numpy.loadtxt(sys.argv[1])[:, 2].argmin()) + 1)" \
-    "$out/ball8_nomask/light_directions.txt")
-  /usr/bin/python3 -c "import numpy, sys; v = numpy.zeros((96, 3)); v[int(sys.argv[1]) - 1] = 1; numpy.savetxt(sys.argv[2], v, fmt='%g')" \
-    "$light" "$out/one_light.txt"
-  "$relume" -q relight "$out/ball_0.1.relume" --lights "$out/one_light.txt" -o "$out/relume_0.1_light$light.exr" -y
+    "$frames/light_directions.txt")
+  /usr/bin/python3 -c "import numpy, sys; v = numpy.zeros((len(numpy.loadtxt(sys.argv[3])), 3)); v[int(sys.argv[1]) - 1] = 1; numpy.savetxt(sys.argv[2], v, fmt='%g')" \
+    "$light" "$out/one_light.txt" "$frames/light_directions.txt"
+  "$relume" -q relight "$out/relume_0.1.relume" --lights "$out/one_light.txt" -o "$out/relume_0.1_light$light.exr" -y
   for codec in "av1 30" "x265 26"; do
     set -- $codec
     [ -s "$out/${1}_crf${2}_light$light.png" ] ||
-      /usr/bin/python3 scripts/codec_curve.py "$out/ball8_nomask" "$ball/mask.png" "$1" "$2" \
+      /usr/bin/python3 scripts/codec_curve.py "$frames" "$mask" "$1" "$2" \
         --keep-light "$light" --keep-dir "$out" > /dev/null
   done
   light_name=$(printf "%03d" "$light")
   /usr/bin/python3 scripts/codec_light_panel.py "$out/light.png" \
-    "light $light as captured=$out/ball8_nomask/$light_name.png" \
+    "light $light as captured=$frames/$light_name.png" \
     "relume, 0.1 B/px=$out/relume_0.1_light$light.exr" \
     "AV1 crf 30, $(grep -o '"bytes_per_pixel": [0-9.]*' "$out/codec_av1_crf30.json" | cut -c20-24) B/px=$out/av1_crf30_light$light.png" \
     "x265 crf 26, $(grep -o '"bytes_per_pixel": [0-9.]*' "$out/codec_x265_crf26.json" | cut -c20-24) B/px=$out/x265_crf26_light$light.png"

@@ -14,8 +14,8 @@ namespace {
 
 // The fewest codestream bytes tried: below this the planes are a few DC values.
 constexpr std::uint64_t min_plane_bytes = 512;
-// A PSNR target's bisection stops when its two ends are this close in bytes.
-constexpr double bisection_ratio = 1.005;
+// A PSNR target's search stops when its two ends are this close in bytes.
+constexpr double bracket_ratio = 1.005;
 
 class PlanesCurve {
  public:
@@ -90,7 +90,7 @@ GlobalBasisFit fit_bytes(PlanesCurve& curve, std::uint64_t bytes, std::int64_t o
 // The fewest codestream bytes whose PSNR reaches `psnr`, between min_plane_bytes and the planes'
 // raw 16-bit size: a bracket grown by factors of 4 from `guess` (another size's answer), then
 // regula falsi on the logarithm of the bytes (in which the PSNR is nearly straight), with the
-// Illinois halving so neither end sticks, until the ends are within bisection_ratio.
+// Illinois halving so neither end sticks, until the ends are within bracket_ratio.
 GlobalBasisFit reach_psnr(PlanesCurve& curve, double psnr, std::uint64_t raw_bytes,
                           std::uint64_t guess) {
   raw_bytes = std::max(raw_bytes, 2 * min_plane_bytes);
@@ -111,10 +111,8 @@ GlobalBasisFit reach_psnr(PlanesCurve& curve, double psnr, std::uint64_t raw_byt
   };
   std::uint64_t bytes = std::clamp(guess ? guess : raw_bytes / 64, min_plane_bytes, raw_bytes);
   if (try_bytes(bytes)) {
-    while (!have_low && bytes > min_plane_bytes) {
-      bytes = std::max(min_plane_bytes, bytes / 4);
-      if (try_bytes(bytes)) continue;
-    }
+    while (!have_low && bytes > min_plane_bytes)
+      try_bytes(bytes = std::max(min_plane_bytes, bytes / 4));
   } else {
     while (!fit.met && bytes < raw_bytes) try_bytes(bytes = std::min(raw_bytes, bytes * 4));
   }
@@ -122,7 +120,7 @@ GlobalBasisFit reach_psnr(PlanesCurve& curve, double psnr, std::uint64_t raw_byt
   double low_side = 1, high_side = 1;  // Illinois weights of the two ends' PSNR offsets
   int kept_end = 0;                    // +1: the low end moved last, -1: the high end
   for (int step = 0;
-       step < 16 && double(fit.point.plane_bytes) > bisection_ratio * double(low.plane_bytes);
+       step < 16 && double(fit.point.plane_bytes) > bracket_ratio * double(low.plane_bytes);
        ++step) {
     const double a = std::log(double(low.plane_bytes)), b = std::log(double(fit.point.plane_bytes));
     const double below = (psnr - low.psnr) * low_side, above = (fit.point.psnr - psnr) * high_side;

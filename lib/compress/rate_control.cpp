@@ -197,11 +197,12 @@ void try_global_basis(
     return done.emplace(index, choice).first->second;
   };
   std::size_t at = sizes.size() / 2;
+  evaluate(at);  // also the only size of a field of 4 lights or fewer
   for (;;) {
     std::optional<std::size_t> next;
     for (const std::size_t neighbour : {at - 1, at + 1}) {
       if (neighbour >= sizes.size()) continue;  // at - 1 wraps below 0
-      const CurveChoice& here = evaluate(at);
+      const CurveChoice& here = done.at(at);
       const CurveChoice& there = evaluate(neighbour);
       if (better(there, here, target) && (!next || better(there, done.at(*next), target)))
         next = neighbour;

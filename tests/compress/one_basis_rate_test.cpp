@@ -77,5 +77,31 @@ TEST(OneBasisRate, APsnrTargetIsReachedWithFewerBytesThanAHigherOne) {
   }
 }
 
+// Four lights give one basis size, four terms: it is fitted (the hill climb starts there and has
+// no neighbour to go to).
+TEST(OneBasisRate, AFieldOfFourLightsFitsItsOnlyBasisSize) {
+  RandomFieldShape shape;
+  shape.width = 48;
+  shape.height = 40;
+  shape.lights = 4;
+  shape.clusters = 2;
+  shape.terms = 2;
+  shape.residual_per_function = 1;
+  const ReflectanceField original =
+      testing::noisy_original(random_compressed_field(shape), 0.01);
+  CompressionOptions options;
+  options.clustering.quiet = true;
+  RateTarget target = one_basis_target();
+  target.bytes = 6000;
+  CompressionStats stats;
+  const TargetSearch search =
+      compress_to_rate_target(original, options, target, ContainerOptions{}, nullptr, stats);
+  ASSERT_EQ(search.explanation["tried"].size(), 1u);
+  EXPECT_EQ(search.explanation["tried"][0]["terms"].get<int>(), 4);
+  EXPECT_TRUE(search.explanation["met"].get<bool>());
+  EXPECT_EQ(search.field.terms, 4);
+  EXPECT_LE(plan_container(search.field, ContainerOptions{}).file_bytes, 6000u);
+}
+
 }  // namespace
 }  // namespace relume
