@@ -9,12 +9,12 @@
 namespace relume {
 
 void for_each_grid_candidate(const ReflectanceField& field, const CompressionOptions& options,
-                             const std::function<bool(int terms, int clusters)>& skip,
-                             const std::function<void(GridCandidate&)>& visit) {
+                             const std::function<void(GridCandidate&)>& visit,
+                             const std::function<bool(int terms, int clusters)>& skip) {
   for (const int terms : {2, 4, 8}) {
     if (terms >= field.lights()) continue;
     for (const int clusters : {32, 64, 128}) {
-      if (skip(terms, clusters)) continue;
+      if (skip && skip(terms, clusters)) continue;
       GridCandidate candidate;
       candidate.options = options;
       candidate.options.clustering.terms = terms;
@@ -127,38 +127,35 @@ TargetSearch compress_to_target_error(const ReflectanceField& field,
   TargetSearch best;
   std::uint64_t best_bytes = 0;
   nlohmann::ordered_json tried = nlohmann::ordered_json::array();
-  for_each_grid_candidate(
-      field, options, [](int, int) { return false; },
-      [&](GridCandidate& grid) {
-        const int terms = grid.options.clustering.terms;
-        Candidate stored = cut_and_store(field, grid.full, grid.energy, target_error, quantization);
-        CompressedField& compressed = stored.field;
-        const double reached = stored.reached;
-        grid.stats.residual_nonzeros = compressed.residual.nonzeros();
-        const std::uint64_t bytes = plan_container(compressed, container).file_bytes;
-        const double mean_entries =
-            compressed.stored_rows()
-                ? double(compressed.residual.nonzeros()) / compressed.stored_rows()
-                : 0;
-        tried.push_back({{"terms", terms},
-                         {"clusters", compressed.clusters},
-                         {"bytes", bytes},
-                         {"mean_residual_entries", mean_entries},
-                         {"error_over_stored_rows", reached}});
-        if (!options.clustering.quiet)
-          std::fprintf(stderr,
-                       "compress: target %.4g: %d terms, %d clusters -> %llu bytes "
-                       "(%.2f residual entries per function)\n",
-                       target_error, terms, compressed.clusters,
-                       static_cast<unsigned long long>(bytes), mean_entries);
-        if (best_bytes == 0 || bytes < best_bytes) {
-          best_bytes = bytes;
-          best.field = std::move(compressed);
-          best.quantization = stored.quantization;
-          best.options = grid.options;
-          stats = grid.stats;
-        }
-      });
+  for_each_grid_candidate(field, options, [&](GridCandidate& grid) {
+    const int terms = grid.options.clustering.terms;
+    Candidate stored = cut_and_store(field, grid.full, grid.energy, target_error, quantization);
+    CompressedField& compressed = stored.field;
+    const double reached = stored.reached;
+    grid.stats.residual_nonzeros = compressed.residual.nonzeros();
+    const std::uint64_t bytes = plan_container(compressed, container).file_bytes;
+    const double mean_entries =
+        compressed.stored_rows() ? double(compressed.residual.nonzeros()) / compressed.stored_rows()
+                                 : 0;
+    tried.push_back({{"terms", terms},
+                     {"clusters", compressed.clusters},
+                     {"bytes", bytes},
+                     {"mean_residual_entries", mean_entries},
+                     {"error_over_stored_rows", reached}});
+    if (!options.clustering.quiet)
+      std::fprintf(stderr,
+                   "compress: target %.4g: %d terms, %d clusters -> %llu bytes "
+                   "(%.2f residual entries per function)\n",
+                   target_error, terms, compressed.clusters, static_cast<unsigned long long>(bytes),
+                   mean_entries);
+    if (best_bytes == 0 || bytes < best_bytes) {
+      best_bytes = bytes;
+      best.field = std::move(compressed);
+      best.quantization = stored.quantization;
+      best.options = grid.options;
+      stats = grid.stats;
+    }
+  });
   best.explanation = {
       {"target", target_error},
       {"method",

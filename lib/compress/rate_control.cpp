@@ -283,66 +283,71 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
     return dominated;
   };
   if (target.clustered)
-    for_each_grid_candidate(field, options, cannot_win, [&](GridCandidate& grid) {
-      std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
-      for (const StoredAs& way : ways) {
-        CompressedField stored = grid.full;
-        std::optional<QuantizationChoice> quantized;
-        if (quantization) {
-          QuantizationBudget budget = *quantization;
-          budget.term_increase = way.term_budget;
-          budget.relative_increase = way.quantization_budget;
-          quantized = quantize_with_budget(field, stored, budget);
-        }
-        // The weight of each stored row's entries in the ranking: inside the region or not.
-        std::vector<double> row_weight(stored.stored_rows(), 1.0);
-        if (!target.region.empty())
-          for (std::size_t r = 0; r < row_weight.size(); ++r) {
-            const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
-            row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
+    for_each_grid_candidate(
+        field, options,
+        [&](GridCandidate& grid) {
+          std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+          for (const StoredAs& way : ways) {
+            CompressedField stored = grid.full;
+            std::optional<QuantizationChoice> quantized;
+            if (quantization) {
+              QuantizationBudget budget = *quantization;
+              budget.term_increase = way.term_budget;
+              budget.relative_increase = way.quantization_budget;
+              quantized = quantize_with_budget(field, stored, budget);
+            }
+            // The weight of each stored row's entries in the ranking: inside the region or not.
+            std::vector<double> row_weight(stored.stored_rows(), 1.0);
+            if (!target.region.empty())
+              for (std::size_t r = 0; r < row_weight.size(); ++r) {
+                const std::uint64_t pixel =
+                    stored.stored_function[r] / std::uint64_t(stored.channels);
+                row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
+              }
+            ContainerOptions planned = container;
+            if (target.parameters_json)
+              planned.parameters_json = target.parameters_json(grid.options, grid.stats);
+            RateCurve curve(field, stored, row_weight, planned, target, threads);
+            const CurveChoice choice =
+                target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
+            smallest = std::min(smallest, curve.points().front().bytes);  // no residual entry
+            nlohmann::ordered_json points = nlohmann::ordered_json::array();
+            for (const RatePoint& point : curve.points()) points.push_back(to_json(point));
+            tried.push_back({{"model", "clustered"},
+                             {"terms", grid.options.clustering.terms},
+                             {"clusters", stored.clusters},
+                             {"term_budget", way.term_budget},
+                             {"quantization_budget", way.quantization_budget},
+                             {"met", choice.met},
+                             {"choice", to_json(choice.point)},
+                             {"points", points}});
+            if (!options.clustering.quiet)
+              std::fprintf(stderr,
+                           "compress: rate target: %d terms, %d clusters, term budget %g, "
+                           "quantization budget "
+                           "%g -> %llu bytes, %.2f dB, error %.5f%s\n",
+                           grid.options.clustering.terms, stored.clusters, way.term_budget,
+                           way.quantization_budget,
+                           static_cast<unsigned long long>(choice.point.bytes), choice.point.psnr,
+                           choice.point.error, choice.met ? "" : " (target not met)");
+            if (!best_choice || better(choice, *best_choice, target)) {
+              best_choice = choice;
+              best.field = curve.at(choice.point.entries);
+              best.quantization = quantized;
+              best.options = grid.options;
+              best_stored_as = way;
+              stats = grid.stats;
+              stats.residual_nonzeros = best.field.residual.nonzeros();
+            }
           }
-        ContainerOptions planned = container;
-        if (target.parameters_json)
-          planned.parameters_json = target.parameters_json(grid.options, grid.stats);
-        RateCurve curve(field, stored, row_weight, planned, target, threads);
-        const CurveChoice choice =
-            target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
-        smallest = std::min(smallest, curve.points().front().bytes);  // no residual entry
-        nlohmann::ordered_json points = nlohmann::ordered_json::array();
-        for (const RatePoint& point : curve.points()) points.push_back(to_json(point));
-        tried.push_back({{"model", "clustered"},
-                         {"terms", grid.options.clustering.terms},
-                         {"clusters", stored.clusters},
-                         {"term_budget", way.term_budget},
-                         {"quantization_budget", way.quantization_budget},
-                         {"met", choice.met},
-                         {"choice", to_json(choice.point)},
-                         {"points", points}});
-        if (!options.clustering.quiet)
-          std::fprintf(
-              stderr,
-              "compress: rate target: %d terms, %d clusters, term budget %g, quantization budget "
-              "%g -> %llu bytes, %.2f dB, error %.5f%s\n",
-              grid.options.clustering.terms, stored.clusters, way.term_budget,
-              way.quantization_budget, static_cast<unsigned long long>(choice.point.bytes),
-              choice.point.psnr, choice.point.error, choice.met ? "" : " (target not met)");
-        if (!best_choice || better(choice, *best_choice, target)) {
-          best_choice = choice;
-          best.field = curve.at(choice.point.entries);
-          best.quantization = quantized;
-          best.options = grid.options;
-          best_stored_as = way;
-          stats = grid.stats;
-          stats.residual_nonzeros = best.field.residual.nonzeros();
-        }
-      }
-      const std::uint64_t affordable = target.bytes > 0 ? target.bytes
-                                       : best_choice && best_choice->met
-                                           ? best_choice->point.bytes
-                                           : std::numeric_limits<std::uint64_t>::max();
-      if (smallest > affordable)
-        too_large.emplace_back(grid.options.clustering.terms, grid.options.clustering.clusters);
-    });
+          const std::uint64_t affordable = target.bytes > 0 ? target.bytes
+                                           : best_choice && best_choice->met
+                                               ? best_choice->point.bytes
+                                               : std::numeric_limits<std::uint64_t>::max();
+          if (smallest > affordable)
+            too_large.emplace_back(grid.options.clustering.terms, grid.options.clustering.clusters);
+        },
+        cannot_win);
   if (!options.clustering.quiet && !skipped.empty())
     std::fprintf(stderr,
                  "compress: rate target: %zu larger (terms, clusters) pairs not factored: a "

@@ -13,12 +13,12 @@
 namespace relume {
 namespace {
 
-// 48 x 40 pixels, 3 channels, 24 lights: a random field of 2 clusters, 3 terms, with noise.
-ReflectanceField sample_original() {
+// 48 x 40 pixels, 3 channels, `lights` lights: a random field of 2 clusters, 3 terms, with noise.
+ReflectanceField sample_original(int lights = 24) {
   RandomFieldShape shape;
   shape.width = 48;
   shape.height = 40;
-  shape.lights = 24;
+  shape.lights = lights;
   shape.clusters = 2;
   shape.terms = 3;
   shape.residual_per_function = 2;
@@ -80,15 +80,7 @@ TEST(OneBasisRate, APsnrTargetIsReachedWithFewerBytesThanAHigherOne) {
 // Four lights give one basis size, four terms: it is fitted (the hill climb starts there and has
 // no neighbour to go to).
 TEST(OneBasisRate, AFieldOfFourLightsFitsItsOnlyBasisSize) {
-  RandomFieldShape shape;
-  shape.width = 48;
-  shape.height = 40;
-  shape.lights = 4;
-  shape.clusters = 2;
-  shape.terms = 2;
-  shape.residual_per_function = 1;
-  const ReflectanceField original =
-      testing::noisy_original(random_compressed_field(shape), 0.01);
+  const ReflectanceField original = sample_original(4);
   CompressionOptions options;
   options.clustering.quiet = true;
   RateTarget target = one_basis_target();
