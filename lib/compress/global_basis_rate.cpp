@@ -14,18 +14,23 @@ namespace {
 
 // The fewest codestream bytes tried: below this the planes are a few DC values.
 constexpr std::uint64_t min_plane_bytes = 512;
-// A PSNR target's search stops when its two ends are this close in bytes.
+// A PSNR target's search stops when its two ends are this close in bytes, or when a point
+// reaches the target by at most psnr_tolerance dB (rate targets promise 0.1 dB).
 constexpr double bracket_ratio = 1.005;
+constexpr double psnr_tolerance = 0.05;
+// encode_jpeg2000_planes lands up to this factor under the bytes it is given.
+constexpr double coder_resolution = 1.01;
 
 class PlanesCurve {
  public:
   PlanesCurve(const ReflectanceField& original, CompressedField base, const RateTarget& target,
-              const ContainerOptions& container, unsigned threads)
+              const ContainerOptions& container, unsigned threads, const PlanesPointHook& measured)
       : original_(original),
         base_(std::move(base)),
         target_(target),
         container_(container),
-        threads_(threads) {
+        threads_(threads),
+        measured_(measured) {
     // The container's bytes besides the codestream: those of a one-byte stand-in, less that byte.
     CompressedField stand_in = base_;
     stand_in.coded_weights = {{0}, 1.0f};
@@ -47,6 +52,7 @@ class PlanesCurve {
     point.error = stored.error;
     point.psnr = stored.psnr;
     points_.push_back(point);
+    if (measured_) measured_(point);
     return {std::move(field), point};
   }
 
@@ -58,6 +64,7 @@ class PlanesCurve {
   const RateTarget& target_;
   const ContainerOptions& container_;
   unsigned threads_;
+  const PlanesPointHook& measured_;
   std::uint64_t fixed_bytes_ = 0;
   std::vector<PlanesRatePoint> points_;
 };
@@ -87,18 +94,36 @@ GlobalBasisFit fit_bytes(PlanesCurve& curve, std::uint64_t bytes, std::int64_t o
   return fit;
 }
 
+// The PSNR's slope in dB per e-fold of codestream bytes between two points; 0 when they are too
+// close in bytes to say or the PSNR does not rise.
+double psnr_slope(const PlanesRatePoint& a, const PlanesRatePoint& b) {
+  const double run = std::log(double(b.plane_bytes) / double(a.plane_bytes));
+  if (std::abs(run) < 0.01) return 0;
+  const double slope = (b.psnr - a.psnr) / run;
+  return slope > 0 ? slope : 0;
+}
+
 // The fewest codestream bytes whose PSNR reaches `psnr`, between min_plane_bytes and the planes'
-// raw 16-bit size: a bracket grown by factors of 4 from `guess` (another size's answer), then
-// regula falsi on the logarithm of the bytes (in which the PSNR is nearly straight), with the
-// Illinois halving so neither end sticks, until the ends are within bracket_ratio.
+// raw 16-bit size. From `start`'s bytes (another size's answer), else a 64th of the raw size, the
+// search first brackets the target: each step moves the logarithm of the bytes by the PSNR still
+// missing over the slope (of the last two points, else `start`'s, else 1 dB per e-fold), a
+// quarter further so as to cross, at most a factor of 16. Then regula falsi on the logarithm of
+// the bytes (in which the PSNR is nearly straight), with the Illinois halving so neither end
+// sticks. It stops when a point reaches the target by at most psnr_tolerance, when the ends are
+// within bracket_ratio, or when the coder returns a codestream already measured.
 GlobalBasisFit reach_psnr(PlanesCurve& curve, double psnr, std::uint64_t raw_bytes,
-                          std::uint64_t guess) {
+                          const PlanesFitStart& start) {
   raw_bytes = std::max(raw_bytes, 2 * min_plane_bytes);
   GlobalBasisFit fit;   // the fewest bytes that reached it
   PlanesRatePoint low;  // the most bytes known not to reach it
-  bool have_low = false;
+  bool have_low = false, repeated = false;
+  std::vector<PlanesRatePoint> seen;
   const auto try_bytes = [&](std::uint64_t plane_bytes) {
     auto [field, point] = curve.measure(plane_bytes);
+    repeated = std::any_of(seen.begin(), seen.end(), [&](const PlanesRatePoint& other) {
+      return other.plane_bytes == point.plane_bytes;
+    });
+    seen.push_back(point);
     if (point.psnr >= psnr) {
       if (!fit.met || point.plane_bytes < fit.point.plane_bytes)
         fit = {std::move(field), point, true, {}, {}};
@@ -107,27 +132,40 @@ GlobalBasisFit reach_psnr(PlanesCurve& curve, double psnr, std::uint64_t raw_byt
       have_low = true;
       if (!fit.met) fit = {std::move(field), point, false, {}, {}};
     }
-    return point.psnr >= psnr;
   };
-  std::uint64_t bytes = std::clamp(guess ? guess : raw_bytes / 64, min_plane_bytes, raw_bytes);
-  if (try_bytes(bytes)) {
-    while (!have_low && bytes > min_plane_bytes)
-      try_bytes(bytes = std::max(min_plane_bytes, bytes / 4));
-  } else {
-    while (!fit.met && bytes < raw_bytes) try_bytes(bytes = std::min(raw_bytes, bytes * 4));
+  const auto close_enough = [&] {
+    return repeated || (fit.met && fit.point.psnr - psnr <= psnr_tolerance);
+  };
+  std::uint64_t bytes = std::clamp(start.plane_bytes ? start.plane_bytes : raw_bytes / 64,
+                                   min_plane_bytes, raw_bytes);
+  try_bytes(bytes);
+  while (!(fit.met && have_low) && !close_enough()) {
+    const PlanesRatePoint& last = seen.back();
+    double slope = seen.size() >= 2 ? psnr_slope(seen[seen.size() - 2], last) : 0;
+    if (slope == 0) slope = start.psnr_slope > 0 ? start.psnr_slope : 1.0;
+    const double step =
+        std::clamp(1.25 * (psnr - last.psnr) / slope, -std::log(16.0), std::log(16.0));
+    const auto next = std::uint64_t(std::clamp(double(last.plane_bytes) * std::exp(step),
+                                               double(min_plane_bytes), double(raw_bytes)));
+    if (next == last.plane_bytes) break;  // at an end of the range
+    try_bytes(bytes = next);
   }
   if (!fit.met || !have_low) return fit;
   double low_side = 1, high_side = 1;  // Illinois weights of the two ends' PSNR offsets
   int kept_end = 0;                    // +1: the low end moved last, -1: the high end
-  for (int step = 0;
-       step < 16 && double(fit.point.plane_bytes) > bracket_ratio * double(low.plane_bytes);
+  for (int step = 0; step < 16 && !close_enough() &&
+                     double(fit.point.plane_bytes) > bracket_ratio * double(low.plane_bytes);
        ++step) {
     const double a = std::log(double(low.plane_bytes)), b = std::log(double(fit.point.plane_bytes));
     const double below = (psnr - low.psnr) * low_side, above = (fit.point.psnr - psnr) * high_side;
     const double t = std::clamp(below / std::max(below + above, 1e-12), 0.05, 0.95);
-    const auto next = std::uint64_t(std::exp(a + t * (b - a)));
-    if (next <= low.plane_bytes || next >= fit.point.plane_bytes) break;
-    const bool reached = try_bytes(next);
+    // The coder lands up to 1% under the bytes asked: closer to the low end is the low end.
+    const auto next =
+        std::max(std::uint64_t(std::exp(a + t * (b - a))),
+                 std::uint64_t(std::ceil(coder_resolution * double(low.plane_bytes))));
+    if (next >= fit.point.plane_bytes) break;
+    try_bytes(next);
+    const bool reached = seen.back().psnr >= psnr;
     const int moved = reached ? -1 : +1;
     // The end that did not move twice running has its offset halved (Illinois).
     if (moved == kept_end)
@@ -152,21 +190,31 @@ std::vector<int> global_basis_sizes(int lights) {
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,
-                                const PlanesFitStart& start) {
-  PlanesCurve curve(field, global_basis_field(field, directions, terms), target, container,
-                    threads);
+                                const PlanesFitStart& start, const PlanesPointHook& measured) {
+  PlanesCurve curve(field, global_basis_field(field, directions, terms), target, container, threads,
+                    measured);
   const std::uint64_t raw_bytes =
       2 * std::uint64_t(field.channels) * std::uint64_t(terms) * std::uint64_t(field.pixels());
   const double planes = double(field.channels) * terms;
-  GlobalBasisFit fit =
-      target.bytes > 0
-          ? fit_bytes(curve, target.bytes, std::llround(start.overhead_per_plane * planes))
-          : reach_psnr(curve, target.psnr, raw_bytes, start.plane_bytes);
+  GlobalBasisFit fit = target.bytes > 0 ? fit_bytes(curve, target.bytes,
+                                                    std::llround(start.overhead_per_plane * planes))
+                                        : reach_psnr(curve, target.psnr, raw_bytes, start);
   fit.points = curve.points();
   fit.learned.overhead_per_plane =
       (double(fit.point.bytes) - double(curve.fixed_bytes()) - double(fit.point.plane_bytes)) /
       planes;
   fit.learned.plane_bytes = fit.met ? fit.point.plane_bytes : start.plane_bytes;
+  fit.learned.psnr_slope = start.psnr_slope;
+  // The slope near the target: of the two points measured closest to its PSNR.
+  std::vector<PlanesRatePoint> nearest = fit.points;
+  std::sort(nearest.begin(), nearest.end(), [&](const auto& a, const auto& b) {
+    return std::abs(a.psnr - target.psnr) < std::abs(b.psnr - target.psnr);
+  });
+  for (std::size_t i = 1; target.psnr > 0 && i < nearest.size(); ++i)
+    if (const double slope = psnr_slope(nearest[0], nearest[i]); slope > 0) {
+      fit.learned.psnr_slope = slope;
+      break;
+    }
   return fit;
 }
 

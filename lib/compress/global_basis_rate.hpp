@@ -1,11 +1,13 @@
 // The one-basis model (global_basis.hpp) fitted to a rate target: for a basis size, the weight
 // planes' codestream is given the bytes the container has left (a byte target) or the fewest
-// bytes whose PSNR reaches the target (regula falsi on the logarithm of the bytes). The rate
-// targets (rate_control.hpp) try it at several basis sizes beside the clustered candidates.
+// bytes whose PSNR reaches the target, to within 0.05 dB (regula falsi on the logarithm of the
+// bytes). The rate targets (rate_control.hpp) try it at several basis sizes beside the clustered
+// candidates.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <relume/container.hpp>
 #include <vector>
 
@@ -22,12 +24,16 @@ struct PlanesRatePoint {
 
 // Where a fit starts, learned from the fit of another basis size: the container's bytes beyond
 // its fixed sections and codestream, per plane (zstd shaves the codestream's per-plane markers;
-// the header's digits vary), and for a PSNR target the codestream bytes that reached it. Zero:
-// nothing known.
+// the header's digits vary), and for a PSNR target the codestream bytes that reached it and the
+// PSNR's slope there (dB per e-fold of codestream bytes). Zero: nothing known.
 struct PlanesFitStart {
   double overhead_per_plane = 0;
   std::uint64_t plane_bytes = 0;
+  double psnr_slope = 0;
 };
+
+// Told of each point as it is measured (a few seconds each on a whole frame).
+using PlanesPointHook = std::function<void(const PlanesRatePoint&)>;
 
 struct GlobalBasisFit {
   CompressedField field;  // its weights coded at `point`
@@ -44,10 +50,11 @@ std::vector<int> global_basis_sizes(int lights);
 // The field with the first `terms` of `directions` (global_basis_directions) and its weight planes
 // coded to meet `target` (exactly one of bytes and PSNR, as rate_control.hpp says) in a container
 // written with `container`. Not met: the closest point (the fewest bytes for a byte target, the
-// most for a PSNR target).
+// most for a PSNR target). `measured` hears of every point.
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,
-                                const PlanesFitStart& start = {});
+                                const PlanesFitStart& start = {},
+                                const PlanesPointHook& measured = {});
 
 }  // namespace relume

@@ -175,8 +175,16 @@ void try_global_basis(
     sized.clustering.terms = terms;
     ContainerOptions planned = container;
     if (target.parameters_json) planned.parameters_json = target.parameters_json(sized, stats);
+    const auto note_point = [&](const PlanesRatePoint& point) {
+      if (!options.clustering.quiet)
+        std::fprintf(stderr,
+                     "compress: rate target: one basis of %d terms: weights in %llu bytes -> "
+                     "%llu bytes, %.2f dB\n",
+                     terms, static_cast<unsigned long long>(point.plane_bytes),
+                     static_cast<unsigned long long>(point.bytes), point.psnr);
+    };
     GlobalBasisFit fit =
-        fit_global_basis(field, directions, terms, target, planned, threads, start);
+        fit_global_basis(field, directions, terms, target, planned, threads, start, note_point);
     start = fit.learned;
     nlohmann::ordered_json points = nlohmann::ordered_json::array();
     for (const PlanesRatePoint& point : fit.points) points.push_back(to_json(point));

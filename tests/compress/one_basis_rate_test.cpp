@@ -56,6 +56,7 @@ TEST(OneBasisRate, AByteTargetLandsWithinTwoPercentUnderItsBytes) {
               measured, 1e-9);
 }
 
+// Reached within the 0.1 dB the rate targets promise, so not with bytes to spare.
 TEST(OneBasisRate, APsnrTargetIsReachedWithFewerBytesThanAHigherOne) {
   const ReflectanceField original = sample_original();
   CompressionOptions options;
@@ -67,10 +68,10 @@ TEST(OneBasisRate, APsnrTargetIsReachedWithFewerBytesThanAHigherOne) {
     CompressionStats stats;
     const TargetSearch search =
         compress_to_rate_target(original, options, target, ContainerOptions{}, nullptr, stats);
-    const double reached = psnr_8bit(original, search.field, 1.0, all_residual_entries, 0,
-                                     target.region)
-                               .masked;
+    const double reached =
+        psnr_8bit(original, search.field, 1.0, all_residual_entries, 0, target.region).masked;
     EXPECT_GE(reached, psnr);
+    EXPECT_LE(reached, psnr + 0.1);
     const std::uint64_t bytes = plan_container(search.field, ContainerOptions{}).file_bytes;
     EXPECT_GT(bytes, previous);
     previous = bytes;
