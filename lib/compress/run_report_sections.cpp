@@ -154,11 +154,12 @@ std::string summary_line(const nlohmann::ordered_json& report, int clusters) {
   char line[1024];
   std::snprintf(
       line, sizeof line,
-      "compressed %s -> %s: %llu bytes (%.4f of float32), %s, largest per-light error "
+      "compressed %s -> %s: %llu bytes (%.3g B/px, 1/%.0f of float32), %s, largest per-light error "
       "%.3g of its function's peak, %lld negative values, %s%s, %.1f s",
       report["input"].get<std::string>().c_str(), output.empty() ? "memory" : output.c_str(),
       static_cast<unsigned long long>(report["bytes"].get<std::uint64_t>()),
-      report["ratio"].get<double>(), error, per_light["largest_relative"].get<double>(),
+      report["bytes_per_pixel"].get<double>(), 1 / report["ratio"].get<double>(), error,
+      per_light["largest_relative"].get<double>(),
       static_cast<long long>(per_light["negative_values"].get<std::int64_t>()),
       model_text(report, clusters).c_str(), dark.c_str(), report["seconds"].get<double>());
   return line;
