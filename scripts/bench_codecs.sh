@@ -10,6 +10,8 @@
 # BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
 # all, what a user gets); BENCH_CAPTURE=pot1 (bear, harvest) takes that DiLiGenT crop's 8-bit
 # images as they are, its mask for the masked PSNR, and writes under OUT_DIR/pot1. The codecs' points are kept in OUT_DIR/codec_*.json and reused.
+# Every point is also relit under two maps (relit-image error against the images relit, scripts/
+# relit_error.py) and timed: load (decode into what relights) and one relit frame.
 # Writes OUT_DIR/codecs.jsonl (one line per point, relume's with its seconds), OUT_DIR/codecs.md
 # (the table, each codec interpolated at relume's bytes), OUT_DIR/codecs.png and OUT_DIR/light.png
 # (the most grazing light as each stores it at about 0.1 B/px, brightened).
@@ -47,15 +49,23 @@ else
 fi
 points="$out/codecs.jsonl"
 : > "$points"
+# Two maps to relight with, as light vectors on the capture's lights (each turned to light the
+# capture best): every point's relit-image error is measured under both.
+vectors=""
+for map in grace_latlong_256x128.hdr stpeters_cross.hdr; do
+  "$relume" -q lights --dirs "$frames" --env "$data/envmaps/$map" --rotate auto \
+    -o "$out/light_${map%%_*}.txt"
+  vectors="${vectors:+$vectors,}$out/light_${map%%_*}.txt"
+done
 # A codec's point depends on the images and its setting only: each is kept and reused.
 codec() {
   local name="$1" crf
   shift
   for crf in "$@"; do
     local kept="$out/codec_${name}_crf$crf.json"
-    [ -s "$kept" ] || {
+    grep -qs relit_error "$kept" || {
       /usr/bin/python3 scripts/codec_curve.py "$frames" "$mask" "$name" "$crf" \
-        > "$kept.part"
+        --light-vectors "$vectors" > "$kept.part"
       mv "$kept.part" "$kept"
     }
     cat "$kept" >> "$points"
@@ -72,16 +82,37 @@ relume_point() {
   "$relume" -q compress "$frames" -o "$out/relume_$name.relume" -y --linear \
     --psnr-mask "$mask" --report "$out/relume_$name.json" "$@"
   milliseconds=$(( ($(date +%s%N) - start) / 1000000 ))
-  /usr/bin/python3 - "$out/relume_$name.json" "$milliseconds" "$*" >> "$points" <<'PY'
+  # Relit under each map, and timed: the container's load (read and decoded into the in-memory
+  # form, Python's relume.open, median of 3) and one relit frame (`relume bench --container`).
+  local vector errors=""
+  for vector in ${vectors//,/ }; do
+    "$relume" -q relight "$out/relume_$name.relume" --lights "$vector" -o "$out/relit.exr" -y
+    errors="$errors $(/usr/bin/python3 scripts/relit_error.py "$frames" "$vector" "$out/relit.exr")"
+  done
+  local load
+  load=$(PYTHONPATH="$build/python" /usr/bin/python3 -c "
+import statistics, sys, time, relume
+times = []
+for _ in range(3):
+    start = time.perf_counter(); relume.open(sys.argv[1]); times.append(time.perf_counter() - start)
+print(statistics.median(times))" "$out/relume_$name.relume")
+  "$relume" -q bench --container "$out/relume_$name.relume" --repeats 3 --no-reference \
+    --assign-rows 0 --json "$out/relume_${name}_bench.json" > /dev/null
+  /usr/bin/python3 - "$out/relume_$name.json" "$milliseconds" "$*" "$errors" "$load" \
+    "$out/relume_${name}_bench.json" >> "$points" <<'PY'
 import json, sys
 report = json.load(open(sys.argv[1]))
+# The single-frame relight with the whole residual: the sweep's last relight record.
+relight = [r for r in json.load(open(sys.argv[6]))["records"] if r["kernel"] == "relight"][-1]
 parameters = report["parameters"]
 model = "one basis" if report["sections"].get("weight_planes", 0) > 0 else "clustered"
 print(json.dumps({"codec": "relume", "setting": f"{sys.argv[3] or 'default'}: {model}, "
                   f"{parameters['terms']} terms, {parameters['clusters']} clusters",
                   "bytes": report["bytes"], "bytes_per_pixel": report["bytes_per_pixel"],
                   "psnr_whole_frame": report["psnr_8bit"]["whole_frame"],
-                  "psnr_mask": report["psnr_8bit"]["mask"], "seconds": float(sys.argv[2]) / 1000}))
+                  "psnr_mask": report["psnr_8bit"]["mask"], "seconds": float(sys.argv[2]) / 1000,
+                  "relit_error": [float(e) for e in sys.argv[4].split()],
+                  "load_seconds": float(sys.argv[5]), "relight_seconds": relight["seconds"]}))
 PY
 }
 # A plain compression first: the default's point, and the time a rate target is held to (3x).
