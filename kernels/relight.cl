@@ -13,8 +13,9 @@
 //     frame (dark[c] . I); one work-item per run of consecutive dark pixels (runs[3r] first pixel,
 //     runs[3r + 1] pixels, runs[3r + 2] the first one's index d).
 //     One work-item per stored row s (function p, channel c = p % CHANNELS, cluster k). Rows are
-//     grouped in slices of SLICE_ROWS; inside a slice, W is stored slot-major (all rows' term j,
-//     then term j+1), so consecutive work-items read consecutive addresses. The residual
+//     grouped in slices of SLICE_ROWS; W is stored slot-major in blocks of WEIGHT_ROWS rows (a
+//     divisor of SLICE_ROWS: all of a block's rows' term j, then term j+1), so consecutive
+//     work-items read consecutive addresses. The residual
 //     (lib/relight/relight_layout.hpp) has a head, entries [0, HEAD_ENTRIES) in the slices, and with
 //     TAIL_ROWS > 0 a tail, the later entries in groups of TAIL_ROWS rows; each group is stored
 //     slot-major too (all rows' entry e, then e+1) and padded with zero entries to the width of
@@ -47,6 +48,9 @@
 #endif
 #ifndef SLICE_ROWS
 #define SLICE_ROWS 32
+#endif
+#ifndef WEIGHT_ROWS
+#define WEIGHT_ROWS SLICE_ROWS
 #endif
 #ifndef CLUSTER_T
 #define CLUSTER_T uint
@@ -281,13 +285,13 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
   const row_ints c = to_row_ints(p % CHANNELS);
   const row_ints product_index = to_row_ints(load_rows(cluster + first)) * (TERMS * CHANNELS) + c;
   __global const WEIGHT_T* row_weights =
-      weights + (first / SLICE_ROWS) * (TERMS * SLICE_ROWS) + first % SLICE_ROWS;
+      weights + (first / WEIGHT_ROWS) * (TERMS * WEIGHT_ROWS) + first % WEIGHT_ROWS;
   row_floats sums =
       residual_of_rows(first, c, cap, slice_offsets, tail_offsets, residual_values, residual_lights,
                        light);
   for (int j = 0; j < TERMS; ++j) {
     const row_ints index = product_index + j * CHANNELS;
-    sums += load_row_floats(row_weights + j * SLICE_ROWS) * gather(products, index);
+    sums += load_row_floats(row_weights + j * WEIGHT_ROWS) * gather(products, index);
   }
   write_rows(first, rows, p, sums, output);
 }
@@ -325,11 +329,11 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
   __global const float* row_products =
       products + ((uint)cluster[row] * TERMS * CHANNELS + c) * BATCH_PAD;
   __global const WEIGHT_T* row_weights =
-      weights + (row / SLICE_ROWS) * (TERMS * SLICE_ROWS) + row % SLICE_ROWS;
+      weights + (row / WEIGHT_ROWS) * (TERMS * WEIGHT_ROWS) + row % WEIGHT_ROWS;
   frames sums[BATCH_VECTORS];
   for (int v = 0; v < BATCH_VECTORS; ++v) sums[v] = (frames)(0.0f);
   for (int j = 0; j < TERMS; ++j) {
-    const float w = (float)row_weights[j * SLICE_ROWS];
+    const float w = (float)row_weights[j * WEIGHT_ROWS];
     for (int v = 0; v < BATCH_VECTORS; ++v)
       sums[v] += w * load_frames(row_products + j * CHANNELS * BATCH_PAD + v * BATCH_WIDTH);
   }

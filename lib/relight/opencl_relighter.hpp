@@ -41,7 +41,8 @@ struct RelightTiming {
 struct OpenClRelighterOptions {
   // Rows per slice of the W and residual layout (SLICE_ROWS, lib/relight/relight_layout.hpp); 0: on
   // CPU devices the tallest of 4096, 2048, ... rows whose padding adds at most 1/8 to the head's
-  // residual entries (tall_slice_rows), 32 (a warp) on others.
+  // residual entries (tall_slice_rows), 32 (a warp) on others. W lies in blocks of 16 rows on
+  // CPU devices (at most the slice), in whole slices on others.
   int slice_rows = 0;
   // CPU devices: residual entries per row in the slices; the rest lie in groups of one row
   // vector. 0: 24. Other devices keep every entry in the slices.
@@ -82,6 +83,7 @@ class OpenClRelighter {
   const RelightTiming& last_timing() const { return last_timing_; }
   // The layout in use: the options as resolved for this device and field.
   int slice_rows() const { return slice_rows_; }
+  int weight_rows() const { return weight_rows_; }
   int work_group_rows() const { return int(work_group_rows_); }
   int row_vector() const { return row_vector_; }
   // Residual entries per row in the slices (the rest in row-vector groups); unlimited off CPUs.
@@ -148,6 +150,7 @@ class OpenClRelighter {
   std::size_t work_group_rows_ = 0;
   int row_vector_ = 1;
   int slice_rows_ = 32;
+  int weight_rows_ = 32;  // rows per block of W (relight_layout.hpp)
   int tail_rows_ = 0;
   std::uint32_t head_entries_ = 0xffffffffu;
   std::uint64_t frame_stride_ = 0;  // floats between frames in the output buffers

@@ -105,10 +105,14 @@ RelightLayout lay_out_field(const CompressedField& field, const RelightLayoutSha
   std::copy(field.stored_function.begin(), field.stored_function.end(),
             layout.stored_function.begin());
   std::copy(field.cluster.begin(), field.cluster.end(), layout.cluster.begin());
+  const std::size_t block = shape.weight_rows > 0 ? std::size_t(shape.weight_rows) : slice;
+  if (slice % block != 0)
+    throw Error("relight layout: " + std::to_string(block) + " rows per block of W do not divide " +
+                std::to_string(slice) + " rows per slice");
   std::vector<float> weights(slices * slice * terms, 0.0f);
   for (std::size_t s = 0; s < rows; ++s)
     for (int j = 0; j < terms; ++j)
-      weights[(s / slice * terms + j) * slice + s % slice] = field.weights(Eigen::Index(s), j);
+      weights[(s / block * terms + j) * block + s % block] = field.weights(Eigen::Index(s), j);
   const ValueQuantization& quantization = field.quantization;
   layout.weights = store_values(weights, quantization.weight_step);
 

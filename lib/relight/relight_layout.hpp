@@ -1,6 +1,8 @@
 // The OpenCL relighter's device layout of a compressed field, built on the host before upload
 // (kernels/relight.cl reads it), and the memory check of a relighting in it. Rows are padded to
-// whole slices; W is slot-major inside each slice. The residual has two regions, each a sequence
+// whole slices; W is slot-major inside blocks of weight_rows rows (a divisor of the slice rows:
+// short on CPUs, so that a work-item's terms are one contiguous run and not one stream per term
+// a slice apart). The residual has two regions, each a sequence
 // of row groups stored slot-major (all of a group's rows' entry e, then entry e + 1) and padded to
 // the group's longest row:
 //   head: entries [0, head_entries) in groups of slice_rows rows (tall on CPUs, so that each
@@ -30,6 +32,7 @@ struct ResidualRegion {
 
 struct RelightLayoutShape {
   int slice_rows = 32;
+  int weight_rows = 0;                       // rows per block of W; 0: slice_rows
   int tail_rows = 0;                         // 0: every entry in the head
   std::uint32_t head_entries = 0xffffffffu;  // entries per row in the head
 };
@@ -48,7 +51,7 @@ struct StoredValues {
 struct RelightLayout {
   std::vector<std::uint32_t> stored_function;  // padded to whole slices
   std::vector<std::uint32_t> cluster;          // padded to whole slices
-  StoredValues weights;                        // slot-major inside each slice
+  StoredValues weights;                        // slot-major inside each block of weight_rows
   ResidualRegion head, tail;                   // the tail's slots follow the head's
   StoredValues residual_values;                // zero padded
   std::vector<std::uint32_t> residual_lights;

@@ -430,13 +430,15 @@ TEST(OpenClRelighter, ReportsKernelTimesAndCappedBytes) {
 }
 
 // CPU slices are as tall as the padding allows: equal rows take 4096-row slices, and a field
-// whose row lengths vary takes shorter ones, padding at most 1/8 of its entries.
+// whose row lengths vary takes shorter ones, padding at most 1/8 of its entries. W lies in
+// 16-row blocks inside them (each work-item's terms one contiguous run).
 TEST(OpenClRelighter, CpuSlicesAreTallUnlessThePaddingGrows) {
   RandomFieldShape shape;  // 640 x 640 RGB, 12 entries per row
   const CompressedField equal = random_compressed_field(shape);
   EXPECT_EQ(tall_slice_rows(equal, 16, 24), 4096);
   OpenClRelighter relighter(pocl(), equal);
   EXPECT_EQ(relighter.slice_rows(), 4096);
+  EXPECT_EQ(relighter.weight_rows(), 16);
   EXPECT_LE(relighter.residual_padding(), 1.0 / 9);
 
   shape.vary_residual = true;  // 0 to 12 entries per row, uniformly at random
@@ -449,10 +451,13 @@ TEST(OpenClRelighter, CpuSlicesAreTallUnlessThePaddingGrows) {
   if (slice > 16) {
     EXPECT_LE(varied_relighter.residual_padding(), 1.0 / 9);
   }
-  // An explicit slice height is kept.
+  // An explicit slice height is kept; W's blocks are never taller than the slices.
   OpenClRelighterOptions options;
   options.slice_rows = 64;
   EXPECT_EQ(OpenClRelighter(pocl(), varied, options).slice_rows(), 64);
+  options.slice_rows = 8;
+  options.row_vector = 8;
+  EXPECT_EQ(OpenClRelighter(pocl(), varied, options).weight_rows(), 8);
 }
 
 TEST(OpenClRelighter, ReusedImagesAndBuffersStayCorrect) {

@@ -113,6 +113,7 @@ std::vector<BenchRecord> RelightRuns::records(const OpenClDevice& device, double
   const std::string& platform = device.platform_name;
   const std::string& name = device.device_name;
   nlohmann::ordered_json layout = {{"slice_rows", relighter_.slice_rows()},
+                                   {"weight_rows", relighter_.weight_rows()},
                                    {"work_group_rows", relighter_.work_group_rows()},
                                    {"row_vector", relighter_.row_vector()},
                                    {"head_entries", nlohmann::ordered_json()}};
