@@ -53,7 +53,7 @@ points="$out/codecs.jsonl"
 # capture best): every point's relit-image error is measured under both.
 vectors=""
 for map in grace_latlong_256x128.hdr stpeters_cross.hdr; do
-  "$relume" -q lights --dirs "$frames" --env "$data/envmaps/$map" --rotate auto \
+  "$relume" -q lights --dirs "$frames" --env "$data/envmaps/$map" --rotate auto -y \
     -o "$out/light_${map%%_*}.txt"
   vectors="${vectors:+$vectors,}$out/light_${map%%_*}.txt"
 done
