@@ -25,6 +25,12 @@
 //     consecutive rows of a slice with vector loads and gathers; otherwise a work-item relights
 //     one row for all frames, the frames forming vectors of BATCH_WIDTH.
 //
+// WORK_CEILING builds relight_rows as the relighter's work ceiling: the same row kernel, same
+// shape, precision and residual widths, but every read confined to the first WINDOW_ROWS rows'
+// data (a window that stays in cache) and no output written unless a sum is NaN, so that it
+// times the gathers, conversions and multiply-adds per row without the memory traffic
+// (relume bench's second roof; lib/relight/opencl_relighter.hpp, work_ceiling_seconds).
+//
 // W and the residual values are WEIGHT_T and RESIDUAL_T: float, or the integers of a quantized
 // field (char or short) whose steps the host folded into the blocks and the light vector
 // (lib/relight/relight_layout.hpp), so the kernels only convert them to float.
@@ -74,6 +80,17 @@
 #define HEAD_ENTRIES 0xffffffffu  // residual entries per row in the slices
 #endif
 
+#ifdef WORK_CEILING
+// Where a row's data is read: inside the window. `group_rows`: the rows of a residual group.
+#define DATA_ROW(row) ((row) % WINDOW_ROWS)
+#define GROUP_OFFSET(offsets, group) ((offsets)[0])
+#define IN_GROUP(row, group_rows) (((row) % (group_rows)) % WINDOW_ROWS)
+#else
+#define DATA_ROW(row) (row)
+#define GROUP_OFFSET(offsets, group) ((offsets)[group])
+#define IN_GROUP(row, group_rows) ((row) % (group_rows))
+#endif
+
 #define BATCH_VECTORS ((BATCH + BATCH_WIDTH - 1) / BATCH_WIDTH)
 #define BATCH_PAD (BATCH_VECTORS * BATCH_WIDTH)
 #define TERM_PAIRS ((TERMS + 1) / 2)
@@ -100,6 +117,11 @@ typedef float16 frames;
 #define store_frames(value, pointer) vstore16(value, 0, pointer)
 #else
 #error "BATCH_WIDTH must be 1, 2, 4, 8 or 16"
+#endif
+#if BATCH_WIDTH == 1
+#define any_nan(value) isnan(value)
+#else
+#define any_nan(value) any(isnan(value))
 #endif
 
 #if TERMS > 0  // a residual-only field has no basis products
@@ -141,7 +163,7 @@ inline void add_region(const uint row, const uint group_rows, const uint c, cons
                        __global const LIGHT_T* residual_lights, __global const float* light,
                        frames* sums) {
   const uint group = row / group_rows;
-  const uint begin = offsets[group] + row % group_rows;
+  const uint begin = GROUP_OFFSET(offsets, group) + IN_GROUP(row, group_rows);
   const uint used = min((offsets[group + 1] - offsets[group]) / group_rows, cap);
   for (uint e = 0; e < used; ++e) {
     const float value = (float)residual_values[begin + e * group_rows];
@@ -169,6 +191,12 @@ inline void add_residual(const uint row, const uint c, const uint cap,
 
 inline void write_frames(const uint p, const uint frame_stride, const frames* sums,
                          __global float* output) {
+#ifdef WORK_CEILING
+  // Every frame's sum decides, so that none of them can be left uncomputed.
+  frames total = sums[0];
+  for (int v = 1; v < BATCH_VECTORS; ++v) total += sums[v];
+  if (!any_nan(total)) return;
+#endif
 #if BATCH == 1
   output[p] = sums[0];
 #else
@@ -224,7 +252,7 @@ inline row_floats region_of_rows(const uint first, const uint group_rows, const 
                                  __global const LIGHT_T* residual_lights,
                                  __global const float* light) {
   const uint group = first / group_rows;
-  const uint begin = offsets[group] + first % group_rows;
+  const uint begin = GROUP_OFFSET(offsets, group) + IN_GROUP(first, group_rows);
   const uint used = min((offsets[group + 1] - offsets[group]) / group_rows, cap);
   // Two sums, so that consecutive entries' gathers and multiply-adds overlap.
   row_floats even = (row_floats)(0.0f), odd = (row_floats)(0.0f);
@@ -258,6 +286,9 @@ inline row_floats residual_of_rows(const uint first, const row_ints c, const uin
 // Writes ROW_VECTOR rows' outputs: one vector store when their functions are consecutive.
 inline void write_rows(const uint first, const uint rows, const row_uints p, const row_floats sums,
                        __global float* output) {
+#ifdef WORK_CEILING
+  if (!any(isnan(sums))) return;
+#endif
   uint functions_of[ROW_VECTOR];
   store_rows(p, functions_of);
   if (first + ROW_VECTOR <= rows &&
@@ -281,11 +312,12 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
                            __global float* output) {
   const uint first = get_global_id(0) * ROW_VECTOR;
   if (first >= rows) return;
-  const row_uints p = load_rows(stored_function + first);
+  const uint at = DATA_ROW(first);
+  const row_uints p = load_rows(stored_function + at);
   const row_ints c = to_row_ints(p % CHANNELS);
-  const row_ints product_index = to_row_ints(load_rows(cluster + first)) * (TERMS * CHANNELS) + c;
+  const row_ints product_index = to_row_ints(load_rows(cluster + at)) * (TERMS * CHANNELS) + c;
   __global const WEIGHT_T* row_weights =
-      weights + (first / WEIGHT_ROWS) * (TERMS * WEIGHT_ROWS) + first % WEIGHT_ROWS;
+      weights + (at / WEIGHT_ROWS) * (TERMS * WEIGHT_ROWS) + at % WEIGHT_ROWS;
   row_floats sums =
       residual_of_rows(first, c, cap, slice_offsets, tail_offsets, residual_values, residual_lights,
                        light);
@@ -324,12 +356,13 @@ __kernel void relight_rows(const uint rows, const uint frame_stride, const uint 
                            __global float* output) {
   const uint row = get_global_id(0);
   if (row >= rows) return;
-  const uint p = stored_function[row];
+  const uint at = DATA_ROW(row);
+  const uint p = stored_function[at];
   const uint c = p % CHANNELS;
   __global const float* row_products =
-      products + ((uint)cluster[row] * TERMS * CHANNELS + c) * BATCH_PAD;
+      products + ((uint)cluster[at] * TERMS * CHANNELS + c) * BATCH_PAD;
   __global const WEIGHT_T* row_weights =
-      weights + (row / WEIGHT_ROWS) * (TERMS * WEIGHT_ROWS) + row % WEIGHT_ROWS;
+      weights + (at / WEIGHT_ROWS) * (TERMS * WEIGHT_ROWS) + at % WEIGHT_ROWS;
   frames sums[BATCH_VECTORS];
   for (int v = 0; v < BATCH_VECTORS; ++v) sums[v] = (frames)(0.0f);
   for (int j = 0; j < TERMS; ++j) {

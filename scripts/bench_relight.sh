@@ -3,7 +3,8 @@
 # 253 lights, 128 clusters, 4 terms, 12 residual entries per function) RUNS times on one OpenCL
 # device and prints one markdown table row per run plus the median of the runs: read and copy
 # ceilings, residual SpMV and relight GB/s with their share of the device's peak, frames/s of a
-# single frame and of a batch of 16, and the batch's speed-up. Then one run per residual cap in
+# single frame and of a batch of 16, the batch's speed-up, and where the single and batched
+# relights sit against their binding roof (memory or the relighter's work ceiling). Then one run per residual cap in
 # $CAPS (default "0 3 6 12"): the speed side of the dynamic residual's trade.
 # Usage: scripts/bench_relight.sh [RELUME_BINARY] [RUNS] [more bench options...]
 #   RELUME_BINARY defaults to build/apps/relume, RUNS to 5; the device is RELUME_DEVICE or the
@@ -46,20 +47,29 @@ for run in range(1, runs + 1):
         "batched_fps": batched["frames_per_second"],
         "batched_fps_wall": batched["wall_frames_per_second"],
         "speedup": batched["frames_per_second"] / single["frames_per_second"],
+        "bound": single["ratio_to_binding_ceiling"], "bound_by": single["binding_ceiling"],
+        "batched_bound": batched["ratio_to_binding_ceiling"],
+        "batched_bound_by": batched["binding_ceiling"],
     })
     device = f'{single["platform"]} / {single["device"]}'
 print(f"device: {device}")
 print("| run | load | read GB/s | copy GB/s | spmv GB/s (of peak) | relight GB/s (of peak) "
-      "| relight frames/s (whole call) | batched frames/s (whole call) | batched / single |")
-print("|---|---|---|---|---|---|---|---|---|")
-median = {k: statistics.median(r[k] for r in rows) for k in rows[0] if k != "run"}
+      "| relight frames/s (whole call) | batched frames/s (whole call) | batched / single "
+      "| relight of binding roof | batched of binding roof |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
+roofs = ("run", "bound_by", "batched_bound_by")
+median = {k: statistics.median(r[k] for r in rows) for k in rows[0] if k not in roofs}
 median["run"] = "median"
+for k in roofs[1:]:  # the roof that binds in most runs
+    median[k] = max({r[k] for r in rows}, key=[r[k] for r in rows].count)
 for r in rows + [median]:
     print(f'| {r["run"]} | {r["load"]:.2f} | {r["read"]:.1f} | {r["copy"]:.1f} '
           f'| {r["spmv"]:.1f} ({100 * r["spmv_peak"]:.0f}%) '
           f'| {r["relight"]:.1f} ({100 * r["relight_peak"]:.0f}%) '
           f'| {r["fps"]:.0f} ({r["fps_wall"]:.0f}) '
-          f'| {r["batched_fps"]:.0f} ({r["batched_fps_wall"]:.0f}) | {r["speedup"]:.1f}x |')
+          f'| {r["batched_fps"]:.0f} ({r["batched_fps_wall"]:.0f}) | {r["speedup"]:.1f}x '
+          f'| {100 * r["bound"]:.0f}% ({r["bound_by"]}) '
+          f'| {100 * r["batched_bound"]:.0f}% ({r["batched_bound_by"]}) |')
 PY
 
 caps="${CAPS:-0 3 6 12}"

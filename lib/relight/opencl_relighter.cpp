@@ -69,6 +69,12 @@ std::uint64_t RelightTiming::kernel_bytes() const {
   return total;
 }
 
+std::uint64_t RelightTiming::kernel_flops() const {
+  std::uint64_t total = 0;
+  for (const auto& timing : kernels) total += timing.flops;
+  return total;
+}
+
 const KernelTiming& RelightTiming::kernel(const std::string& name) const {
   for (const auto& timing : kernels)
     if (timing.kernel == name) return timing;
@@ -125,6 +131,11 @@ OpenClRelighter::OpenClRelighter(OpenClContext& context, const CompressedField& 
   // A work-item's W on a CPU is then one contiguous run (a stream per term, a slice apart, was
   // half as fast at 48 terms); a warp's is one coalesced read per term on other devices.
   weight_rows_ = cpu ? std::min(16, slice_rows_) : slice_rows_;
+  // The work ceiling's window: whole blocks of W, about 16 KB of them (at most 64 blocks).
+  const int block_bytes = std::max(1, field.terms * int(sizeof(float)) * weight_rows_);
+  int window_blocks = 1;
+  while (window_blocks < 64 && 2 * window_blocks * block_bytes <= 16384) window_blocks *= 2;
+  window_rows_ = weight_rows_ * window_blocks;
   if ((row_vector_ != 1 && row_vector_ != 4 && row_vector_ != 8 && row_vector_ != 16) ||
       slice_rows_ % row_vector_ != 0 || weight_rows_ % row_vector_ != 0 ||
       work_group_rows_ % row_vector_ != 0)
@@ -222,6 +233,7 @@ OpenClRelighter::BatchProgram& OpenClRelighter::batch_program(int batch) {
   program.batch_pad = (batch + width - 1) / width * width;
   const std::string options = base_options_ + " -DBATCH=" + std::to_string(batch) +
                               " -DBATCH_WIDTH=" + std::to_string(width);
+  program.options = options;
   if (shape_.terms > 0) program.gemv = context_.kernel("relight.cl", "cluster_products", options);
   program.relight_rows = context_.kernel("relight.cl", "relight_rows", options);
   program.residual_rows = context_.kernel("relight.cl", "residual_rows", options);
@@ -296,6 +308,7 @@ OpenClRelighter::Launch OpenClRelighter::launch_dark(BatchProgram& program) {
   timing.bytes = dark_run_count_ * 12 + std::uint64_t(shape_.channels) * program.batch_pad * 4 +
                  dark_pixel_count_ * shape_.channels * sizeof(float) +
                  dark_pixel_count_ * shape_.channels * std::uint64_t(program.batch) * sizeof(float);
+  timing.flops = dark_pixel_count_ * shape_.channels * std::uint64_t(program.batch);
   return {timing, event};
 }
 
@@ -314,13 +327,17 @@ OpenClRelighter::Launch OpenClRelighter::launch_gemv(BatchProgram& program) {
   KernelTiming timing{"gemv", 0, 0};
   timing.bytes = std::uint64_t(shape_.clusters) * term_pairs * (lights_even_ / 2) * 16 +
                  light_buffer_bytes(program) + products_bytes(program);
+  timing.flops = 2 * std::uint64_t(shape_.clusters) * (2 * term_pairs) * lights_even_ *
+                 shape_.channels * std::uint64_t(program.batch_pad);
   return {timing, event};
 }
 
 OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass pass,
                                                      int residual_cap) {
-  const bool with_basis = pass == Pass::relight;
-  cl::Kernel& kernel = with_basis ? program.relight_rows : program.residual_rows;
+  const bool with_basis = pass != Pass::residual;
+  cl::Kernel& kernel = pass == Pass::ceiling ? program.ceiling_rows
+                       : with_basis          ? program.relight_rows
+                                             : program.residual_rows;
   int arg = 0;
   kernel.setArg(arg++, cl_uint(rows_));
   kernel.setArg(arg++, cl_uint(frame_stride_));
@@ -345,7 +362,7 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
   context_.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
                                         cl::NDRange((items + local - 1) / local * local),
                                         cl::NDRange(local), nullptr, &event);
-  KernelTiming timing{with_basis ? "rows" : "spmv", 0, 0};
+  KernelTiming timing{pass == Pass::ceiling ? "ceiling" : with_basis ? "rows" : "spmv", 0, 0};
   // Per row: its function index, its output per frame; with the basis also its cluster id and
   // weights. Shared by all rows: the group offsets, the light vectors and the products (cached).
   std::uint64_t per_row = sizeof(std::uint32_t) + std::uint64_t(program.batch) * sizeof(float);
@@ -354,6 +371,11 @@ OpenClRelighter::Launch OpenClRelighter::launch_rows(BatchProgram& program, Pass
                  (head_.offsets.size() + (reads_tail(residual_cap) ? tail_.offsets.size() : 0)) *
                      sizeof(std::uint32_t) +
                  light_buffer_bytes(program) + (with_basis ? products_bytes(program) : 0);
+  // A multiply-add per weight and per residual slot read (padding too), for every frame.
+  const std::uint64_t slots =
+      residual_bytes(residual_cap) / std::uint64_t(residual_value_bytes_ + light_id_bytes_);
+  timing.flops = 2 * std::uint64_t(program.batch) *
+                 ((with_basis ? rows_ * std::uint64_t(shape_.terms) : 0) + slots);
   return {timing, event};
 }
 
@@ -414,6 +436,42 @@ void OpenClRelighter::relight_batch_into(const std::vector<LightRgb>& lights, in
   }
   last_timing_.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double OpenClRelighter::work_ceiling_seconds(int frames, int residual_cap) {
+  check_residual_cap(residual_cap);
+  if (frames < 1)
+    throw Error("OpenCL relighter: the work ceiling of " + std::to_string(frames) +
+                " frames (expected at least 1)");
+  if (rows_ == 0) return 0;
+  // In passes of at most max_batch frames, as relight_batch_into relights them.
+  double seconds = 0;
+  for (int first = 0; first < frames; first += options_.max_batch)
+    seconds +=
+        work_ceiling_pass_seconds(std::min(options_.max_batch, frames - first), residual_cap);
+  return seconds;
+}
+
+double OpenClRelighter::work_ceiling_pass_seconds(int frames, int residual_cap) {
+  try {
+    BatchProgram& program = batch_program(frames);
+    if (!program.ceiling_rows())
+      program.ceiling_rows = context_.kernel(
+          "relight.cl", "relight_rows",
+          program.options + " -DWORK_CEILING -DWINDOW_ROWS=" + std::to_string(window_rows_));
+    // Zeros, not NaN from an earlier pass's garbage: the kernel then writes nothing. The next
+    // relighting uploads its lights and computes its products anew.
+    cl::CommandQueue& queue = context_.queue();
+    queue.enqueueFillBuffer(program.light, 0.0f, 0, light_buffer_bytes(program));
+    queue.enqueueFillBuffer(program.products, 0.0f, 0,
+                            std::max<std::uint64_t>(products_bytes(program), 4));
+    Launch launch = launch_rows(program, Pass::ceiling, residual_cap);
+    queue.finish();
+    return event_seconds(launch.event);
+  } catch (const cl::Error& error) {
+    rethrow_opencl(error, context_,
+                   "timing the work ceiling of " + std::to_string(frames) + " frames");
+  }
 }
 
 std::vector<Image> OpenClRelighter::relight_batch(const std::vector<LightRgb>& lights,

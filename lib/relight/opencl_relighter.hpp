@@ -18,11 +18,13 @@
 
 namespace relume {
 
-// One kernel launch: "gemv" (cluster_products), "rows" (relight_rows) or "spmv" (residual_rows).
+// One kernel launch: "gemv" (cluster_products), "rows" (relight_rows), "spmv" (residual_rows),
+// "dark" (dark_pixels) or "ceiling" (relight_rows as the work ceiling).
 struct KernelTiming {
   std::string kernel;
   double seconds = 0;       // device time from the profiling events
   std::uint64_t bytes = 0;  // global memory the launch reads and writes (capped residual only)
+  std::uint64_t flops = 0;  // floating-point operations: two per multiply-add, padding included
 
   double gbps() const { return seconds > 0 ? 1e-9 * double(bytes) / seconds : 0; }
 };
@@ -35,6 +37,7 @@ struct RelightTiming {
 
   double kernel_seconds() const;
   std::uint64_t kernel_bytes() const;
+  std::uint64_t kernel_flops() const;
   const KernelTiming& kernel(const std::string& name) const;  // throws Error when absent
 };
 
@@ -79,6 +82,11 @@ class OpenClRelighter {
   void relight_residual_into(const LightRgb& light, int residual_cap, Image& image);
   // The per-cluster GEMV alone: v[(k * terms + j) * channels + c].
   std::vector<float> cluster_products(const LightRgb& light);
+  // The relighter's work ceiling (kernels/relight.cl, WORK_CEILING): device seconds of the row
+  // kernel relighting `frames` frames at this cap with every read kept in a cached window and
+  // nothing written, i.e. what its gathers, conversions and multiply-adds take without the memory
+  // traffic. Leaves the relighter as it was (the next call relights as before).
+  double work_ceiling_seconds(int frames, int residual_cap);
 
   const RelightTiming& last_timing() const { return last_timing_; }
   // The layout in use: the options as resolved for this device and field.
@@ -110,8 +118,10 @@ class OpenClRelighter {
     cl::Kernel relight_rows;
     cl::Kernel residual_rows;
     cl::Kernel dark_pixels;
-    cl::Buffer light;  // lights_even * channels * batch_pad
-    cl::Buffer dark;   // channels * batch_pad: each frame's dark-model value per channel
+    cl::Kernel ceiling_rows;  // built at the first work_ceiling_seconds
+    std::string options;      // the programs' build options
+    cl::Buffer light;         // lights_even * channels * batch_pad
+    cl::Buffer dark;          // channels * batch_pad: each frame's dark-model value per channel
     std::vector<float> dark_staging;  // host copy of `dark` while it is being written
     cl::Buffer products;              // clusters * terms * channels * batch_pad
     cl::Buffer output;                // batch * frame_stride_, zero where no row is stored
@@ -121,13 +131,14 @@ class OpenClRelighter {
     KernelTiming timing;  // seconds filled in once the launch has finished
     cl::Event event;
   };
-  enum class Pass { relight, residual, products };
+  enum class Pass { relight, residual, products, ceiling };
 
   BatchProgram& batch_program(int batch);
   void upload_lights(BatchProgram& program, const std::vector<const LightRgb*>& lights, Pass pass);
   Launch launch_gemv(BatchProgram& program);
   Launch launch_rows(BatchProgram& program, Pass pass, int residual_cap);
   Launch launch_dark(BatchProgram& program);
+  double work_ceiling_pass_seconds(int frames, int residual_cap);
   // Relights lights into images[first, first + lights.size()).
   void run_pass(const std::vector<const LightRgb*>& lights, int residual_cap, Pass pass,
                 Image* images);
@@ -151,6 +162,7 @@ class OpenClRelighter {
   int row_vector_ = 1;
   int slice_rows_ = 32;
   int weight_rows_ = 32;  // rows per block of W (relight_layout.hpp)
+  int window_rows_ = 32;  // rows whose data the work ceiling reads (WINDOW_ROWS)
   int tail_rows_ = 0;
   std::uint32_t head_entries_ = 0xffffffffu;
   std::uint64_t frame_stride_ = 0;  // floats between frames in the output buffers

@@ -73,6 +73,20 @@ TEST(BenchCommand, WritesOneRecordPerDeviceAndKernel) {
       EXPECT_EQ(record["layout"]["row_vector"], 16) << record.dump();
       EXPECT_EQ(record["layout"]["head_entries"], 24) << record.dump();
     }
+    if (platform != "reference" && (kernel == "relight" || kernel == "relight_batched")) {
+      // On a roofline of two roofs: 384 rows x (3 terms + 2 of the cap's entries) multiply-adds
+      // per frame in the row kernel, besides the GEMV's and the dark pixels'.
+      const int frames = record["frames"].get<int>();
+      EXPECT_GE(record["flops"].get<double>(), 2.0 * frames * 384 * (3 + 2)) << record.dump();
+      EXPECT_NEAR(record["arithmetic_intensity"].get<double>(),
+                  record["flops"].get<double>() / record["bytes"].get<double>(), 1e-9);
+      const double memory = record["memory_ceiling_seconds"].get<double>();
+      const double work = record["work_ceiling_seconds"].get<double>();
+      EXPECT_GT(work, 0) << record.dump();
+      EXPECT_EQ(record["binding_ceiling"], memory >= work ? "memory" : "work") << record.dump();
+      EXPECT_NEAR(record["ratio_to_binding_ceiling"].get<double>(),
+                  std::max(memory, work) / record["seconds"].get<double>(), 1e-9);
+    }
     if (kernel == "assign") {
       // 64 rows x 9 lights, 64 x 3 candidates, 3 clusters x 3 terms x 9 lights of bases read;
       // best, second, objective and 3 weights written per row; all 4 bytes each.

@@ -460,6 +460,25 @@ TEST(OpenClRelighter, CpuSlicesAreTallUnlessThePaddingGrows) {
   EXPECT_EQ(OpenClRelighter(pocl(), varied, options).weight_rows(), 8);
 }
 
+// The work ceiling (the row kernel with its reads kept in cache, writing nothing) takes time,
+// counts the multiply-adds of the cap, and leaves the relighter relighting as before.
+TEST(OpenClRelighter, WorkCeilingLeavesTheRelighterAsItWas) {
+  const CompressedField field = random_compressed_field(small_shape(60));
+  OpenClRelighter relighter(pocl(), field);
+  const LightRgb light = random_light_vector(field.lights, 61);
+  const Image before = relighter.relight(light, 3);
+  EXPECT_EQ(relighter.last_timing().kernel("rows").flops,
+            2 * field.stored_rows() * std::uint64_t(field.terms) +
+                2 * relighter.residual_bytes(3) /
+                    std::uint64_t(relighter.residual_value_bytes() + 1));  // 1-byte light ids
+  for (const int frames : {1, 5, 40})  // 40: two passes of max_batch 32
+    EXPECT_GT(relighter.work_ceiling_seconds(frames, 3), 0) << frames;
+  EXPECT_EQ(relighter.relight(light, 3).pixels, before.pixels);
+  EXPECT_LT(relative_error(relighter.relight_batch({light, light}, 3)[1],
+                           relight_compressed_reference(field, light, 3)),
+            float_tolerance);
+}
+
 TEST(OpenClRelighter, ReusedImagesAndBuffersStayCorrect) {
   const CompressedField field = random_compressed_field(small_shape(95));
   OpenClRelighter relighter(pocl(), field);

@@ -1,5 +1,6 @@
 // The records of `relume bench`: one per (device, kernel, residual setting) with bytes moved per
-// run, the median of its timed runs and the device's peak, written as JSON and printed as tables.
+// run, the median of its timed runs, the device's peak and, for the relighting kernels, their
+// place on a roofline of two roofs (memory and work), written as JSON and printed as tables.
 #pragma once
 
 #include <cstdint>
@@ -33,10 +34,27 @@ struct BenchRecord {
   std::string pattern;                    // access pattern of a ceiling kernel
   std::optional<ResidualPoint> residual;  // for kernels that read the residual
   nlohmann::ordered_json layout;          // relighting kernels: slice, work-group and row vector
+  // Relighting kernels: their floating-point operations per run, and the median seconds of the
+  // run with the row kernel at the relighter's work ceiling (the second roof).
+  std::uint64_t flops = 0;
+  std::optional<double> work_ceiling_seconds;
 
   double gbps() const { return 1e-9 * double(bytes) / seconds; }
   bool in_sweep() const { return residual && residual->error; }
 };
+
+// A relighting record against its two roofs: the memory roof (its bytes at the device's peak
+// bandwidth) and the work roof (work_ceiling_seconds). The one that takes longer binds; the ratio
+// is the binding roof's seconds over the measured ones (1: at the roof).
+struct RooflinePosition {
+  double memory_seconds = 0;
+  double work_seconds = 0;
+  bool memory_binds = true;
+  double ratio_to_binding_ceiling = 0;
+};
+
+// For a record with flops, a work ceiling and a peak; nullopt otherwise.
+std::optional<RooflinePosition> roofline_position(const BenchRecord& record);
 
 BenchRecord make_record(const std::string& platform, const std::string& device,
                         const std::string& kernel, std::uint64_t bytes,

@@ -82,6 +82,19 @@ RelightRuns::RelightRuns(OpenClRelighter& relighter, std::vector<ResidualPoint> 
   }
 }
 
+namespace {
+
+// Seconds of the call's kernels with its row kernel replaced by `ceiling` seconds: the call at
+// the relighter's work ceiling.
+double at_work_ceiling(const RelightTiming& timing, double ceiling) {
+  double seconds = ceiling;
+  for (const KernelTiming& kernel : timing.kernels)
+    if (kernel.kernel != "rows") seconds += kernel.seconds;
+  return seconds;
+}
+
+}  // namespace
+
 void RelightRuns::run_round(const LightRgb& light) {
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const int cap = points_[i].cap;
@@ -92,7 +105,9 @@ void RelightRuns::run_round(const LightRgb& light) {
     runs.gemv_bytes = single.kernel("gemv").bytes;
     runs.relight.push_back(single.kernel_seconds());
     runs.relight_bytes = single.kernel_bytes();
+    runs.relight_flops = single.kernel_flops();
     runs.relight_wall.push_back(single.wall_seconds);
+    runs.relight_work.push_back(at_work_ceiling(single, relighter_.work_ceiling_seconds(1, cap)));
     if (with_parts_) {
       relighter_.relight_residual_into(light, cap, frame_[0]);
       runs.spmv.push_back(relighter_.last_timing().kernel("spmv").seconds);
@@ -105,6 +120,9 @@ void RelightRuns::run_round(const LightRgb& light) {
       batched.kernel.push_back(timing.kernel_seconds());
       batched.wall.push_back(timing.wall_seconds);
       batched.bytes = timing.kernel_bytes();
+      batched.flops = timing.kernel_flops();
+      batched.work.push_back(
+          at_work_ceiling(timing, relighter_.work_ceiling_seconds(int(batches_[b].size()), cap)));
     }
   }
 }
@@ -130,12 +148,16 @@ std::vector<BenchRecord> RelightRuns::records(const OpenClDevice& device, double
         make_record(platform, name, "relight", runs.relight_bytes, runs.relight, peak_gbps, 1));
     records.back().wall_seconds = median_seconds(runs.relight_wall);
     records.back().residual = points_[i];
+    records.back().flops = runs.relight_flops;
+    records.back().work_ceiling_seconds = median_seconds(runs.relight_work);
     for (std::size_t b = 0; b < batches_.size(); ++b) {
       const BatchRuns& batched = runs.batched[b];
       records.push_back(make_record(platform, name, "relight_batched", batched.bytes,
                                     batched.kernel, peak_gbps, int(batches_[b].size())));
       records.back().wall_seconds = median_seconds(batched.wall);
       records.back().residual = points_[i];
+      records.back().flops = batched.flops;
+      records.back().work_ceiling_seconds = median_seconds(batched.work);
     }
   }
   for (BenchRecord& record : records) record.layout = layout;

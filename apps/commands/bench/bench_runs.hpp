@@ -34,7 +34,8 @@ class CeilingRuns {
   std::vector<double> read_, copy_;
 };
 
-// The relighting kernels on one uploaded field, at each residual point.
+// The relighting kernels on one uploaded field, at each residual point, each with its work
+// ceiling (OpenClRelighter::work_ceiling_seconds) timed in the same round.
 class RelightRuns {
  public:
   // `batches`: the light vectors of each batched pass, one batch per batch size. with_parts: also
@@ -47,13 +48,14 @@ class RelightRuns {
   std::vector<BenchRecord> records(const OpenClDevice& device, double peak_gbps) const;
 
  private:
+  // `work`: the call's kernels with the row kernel at its work ceiling (RelightRuns::run_round).
   struct BatchRuns {
-    std::vector<double> kernel, wall;
-    std::uint64_t bytes = 0;
+    std::vector<double> kernel, wall, work;
+    std::uint64_t bytes = 0, flops = 0;
   };
   struct PointRuns {
-    std::vector<double> gemv, spmv, relight, relight_wall;
-    std::uint64_t gemv_bytes = 0, spmv_bytes = 0, relight_bytes = 0;
+    std::vector<double> gemv, spmv, relight, relight_wall, relight_work;
+    std::uint64_t gemv_bytes = 0, spmv_bytes = 0, relight_bytes = 0, relight_flops = 0;
     std::vector<BatchRuns> batched;  // per batch
   };
   OpenClRelighter& relighter_;
