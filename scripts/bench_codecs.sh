@@ -9,7 +9,11 @@
 #   scripts/bench_codecs.sh [BUILD_DIR] [OUT_DIR]
 # BENCH_RATES="0.05 0.1" picks the rates; BENCH_MODELS=one-basis passes --target-models (default:
 # all, what a user gets); BENCH_CAPTURE=pot1 (bear, harvest) takes that DiLiGenT crop's 8-bit
-# images as they are, its mask for the masked PSNR, and writes under OUT_DIR/pot1. The codecs' points are kept in OUT_DIR/codec_*.json and reused.
+# images as they are, its mask for the masked PSNR, and writes under OUT_DIR/pot1;
+# BENCH_CAPTURE=synth renders the demo's synthetic scene (`relume synth`, 320 x 320, 253 lights)
+# and normalises it to 8 bit like the ball (gain 4: 99% of its lit values below 0.8, the
+# highlights clipped), under OUT_DIR/synth. The codecs' points are kept in OUT_DIR/codec_*.json
+# and reused.
 # Every point is also relit under two maps (relit-image error against the images relit, scripts/
 # relit_error.py) and timed: load (decode into what relights) and one relit frame.
 # Writes OUT_DIR/codecs.jsonl (one line per point, relume's with its seconds), OUT_DIR/codecs.md
@@ -30,15 +34,26 @@ case "$capture" in
   pot1 | bear | harvest)
     source_dir="$data/olat/diligent-$capture-crop8"
     out="$out/$capture" ;;
-  *) echo "bench_codecs.sh: BENCH_CAPTURE is ball, pot1, bear or harvest, got '$capture'"; exit 2 ;;
+  synth)
+    out="$out/synth"
+    source_dir="$out/scene"
+    [ -d "$source_dir" ] || {
+      "$relume" -q -y synth -o "$source_dir.part" --size 320x320 --lights 253
+      mv "$source_dir.part" "$source_dir"
+    } ;;
+  *) echo "bench_codecs.sh: BENCH_CAPTURE is ball, pot1, bear, harvest or synth, got '$capture'"; exit 2 ;;
 esac
 mask="$source_dir/mask.png"
 mkdir -p "$out"
-# The light images as a user holds them: the ball normalised to 8 bit, a crop's 8-bit PNGs as
-# they are (its light intensities left out, as a video of the images cannot use them).
+# The light images as a user holds them: the ball and the synthetic scene normalised to 8 bit, a
+# crop's 8-bit PNGs as they are (its light intensities left out, as a video of the images cannot
+# use them).
 if [ "$capture" = ball ]; then
   frames="$out/ball8_nomask"
   [ -d "$frames" ] || /usr/bin/python3 scripts/normalize_to_8bit.py "$source_dir" "$frames" --no-mask
+elif [ "$capture" = synth ]; then
+  frames="$out/scene8"
+  [ -d "$frames" ] || /usr/bin/python3 scripts/normalize_to_8bit.py "$source_dir" "$frames" --no-mask --gain 4
 else
   frames="$out/frames"
   [ -d "$frames" ] || {
@@ -121,10 +136,11 @@ for rate in $rates; do
   relume_point "$rate" --target-bytes-per-pixel "$rate" --target-models "$models"
 done
 /usr/bin/python3 scripts/codec_table.py "$points" "$out/codecs.md" "$out/codecs.png"
-# To look at, not only measure: the most grazing light (the longest shadows) as stored by relume
+# To look at, not only measure: the most grazing light in front (the longest shadows; z > 0.1, so
+# that a light behind a synthetic scene is not taken) as stored by relume
 # at 0.1 B/px and by AV1 and x265 at about those bytes, brightened 8 times (OUT_DIR/light.png).
 if [ -s "$out/relume_0.1.relume" ]; then
-  light=$(/usr/bin/python3 -c "import numpy, sys; print(int(numpy.loadtxt(sys.argv[1])[:, 2].argmin()) + 1)" \
+  light=$(/usr/bin/python3 -c "import numpy, sys; z = numpy.loadtxt(sys.argv[1])[:, 2]; print(int(numpy.where(z > 0.1, z, numpy.inf).argmin()) + 1)" \
     "$frames/light_directions.txt")
   /usr/bin/python3 -c "import numpy, sys; v = numpy.zeros((len(numpy.loadtxt(sys.argv[3])), 3)); v[int(sys.argv[1]) - 1] = 1; numpy.savetxt(sys.argv[2], v, fmt='%g')" \
     "$light" "$out/one_light.txt" "$frames/light_directions.txt"

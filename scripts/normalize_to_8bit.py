@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """Writes an 8-bit copy of a DiLiGenT field folder the way RTI tools take such data (GUIDE 3b, the
-compact-container benchmark): each image read at full depth, v / (2^bits - 1), divided by its row
-of light_intensities.txt (per channel), times GAIN, clipped to [0, 1], rounded to 8 bits, written
-as PNG. filenames.txt and light_directions.txt are copied, light_intensities.txt is left out (the
-images are already divided by it), mask.png is copied unless --no-mask. Uses NumPy and
-OpenImageIO's Python bindings only, none of relume's code.
+compact-container benchmark): each image read at full depth, v / (2^bits - 1) (float images, such
+as `relume synth`'s EXR, as they are), divided by its row of light_intensities.txt (per channel),
+times GAIN, clipped to [0, 1], rounded to 8 bits, written as PNG under the image's name with the
+extension .png. filenames.txt lists those names; light_directions.txt is copied,
+light_intensities.txt is left out (the images are already divided by it), mask.png is copied
+unless --no-mask. Uses NumPy and OpenImageIO's Python bindings only, none of relume's code.
 
 Usage: scripts/normalize_to_8bit.py INPUT_FOLDER OUTPUT_FOLDER [--gain 5.3396] [--no-mask]
 """
@@ -27,6 +28,10 @@ def read_image(path):
     if image is None:
         fail(f"cannot read {path}: {oiio.geterror()}")
     spec = image.spec()
+    if spec.format in (oiio.HALF, oiio.FLOAT, oiio.DOUBLE):
+        pixels = image.read_image(format=oiio.FLOAT)
+        image.close()
+        return np.asarray(pixels, dtype=np.float64)
     bits = 16 if spec.format == oiio.UINT16 else 8
     pixels = image.read_image(format=oiio.UINT16 if bits == 16 else oiio.UINT8)
     image.close()
@@ -48,15 +53,19 @@ def main():
     if intensities.shape != (len(names), 3):
         fail(f"light_intensities.txt has shape {intensities.shape}, expected ({len(names)}, 3)")
     os.makedirs(args.output, exist_ok=True)
+    written = []
     for i, name in enumerate(names):
         values = read_image(os.path.join(args.input, name))[..., :3] / intensities[i] * args.gain
         eight_bit = np.round(np.clip(values, 0, 1) * 255).astype(np.uint8)
-        out = oiio.ImageOutput.create(os.path.join(args.output, name))
+        png_name = os.path.splitext(name)[0] + ".png"
+        out = oiio.ImageOutput.create(os.path.join(args.output, png_name))
         spec = oiio.ImageSpec(eight_bit.shape[1], eight_bit.shape[0], 3, oiio.UINT8)
-        if not out.open(os.path.join(args.output, name), spec) or not out.write_image(eight_bit):
-            fail(f"cannot write {name}: {out.geterror()}")
+        if not out.open(os.path.join(args.output, png_name), spec) or not out.write_image(eight_bit):
+            fail(f"cannot write {png_name}: {out.geterror()}")
         out.close()
-    shutil.copy(names_file, args.output)
+        written.append(png_name)
+    with open(os.path.join(args.output, "filenames.txt"), "w") as listing:
+        listing.write("\n".join(written) + "\n")
     shutil.copy(os.path.join(args.input, "light_directions.txt"), args.output)
     if not args.no_mask and os.path.isfile(os.path.join(args.input, "mask.png")):
         shutil.copy(os.path.join(args.input, "mask.png"), args.output)
