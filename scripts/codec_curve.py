@@ -18,7 +18,6 @@ Example:
   scripts/codec_curve.py ball8 ../shared/data/olat/diligent-ball-16bit/mask.png av1 50,40,30
 """
 import argparse
-import glob
 import json
 import os
 import subprocess
@@ -38,23 +37,6 @@ CODECS = {
              "-x265-params", "keyint=300:log-level=error"],
     "svtav1": ["-pix_fmt", "yuv420p10le", "-c:v", "libsvtav1", "-preset", "6", "-g", "300"],
 }
-
-
-def read_rgb8(path):
-    image = oiio.ImageInput.open(path)
-    if image is None:
-        sys.exit(f"codec_curve.py: cannot read {path}: {oiio.geterror()}")
-    pixels = image.read_image(oiio.UINT8)
-    image.close()
-    return pixels[..., :3]
-
-
-def light_images(folder):
-    names = sorted(f for f in glob.glob(os.path.join(folder, "*.png"))
-                   if os.path.basename(f)[0].isdigit())
-    if not names:
-        sys.exit(f"codec_curve.py: {folder}: no numbered PNG light images")
-    return np.stack([read_rgb8(name) for name in names])  # lights x H x W x 3, uint8
 
 
 def psnr(decoded, reference, where):
@@ -85,13 +67,13 @@ def main():
     parser.add_argument("--light-vectors", metavar="A.txt,B.txt",
                         help="light vectors (`relume lights -o`) to relight with, comma-separated")
     args = parser.parse_args()
-    images = light_images(args.lights)
+    images = relit_error.light_images(args.lights)
     vectors = [relit_error.light_vector(v) for v in args.light_vectors.split(",")] \
         if args.light_vectors else []
     references = [relit_error.relight(relit_error.planar(images), v, *images.shape[1:3])
                   for v in vectors]
     lights, height, width, _ = images.shape
-    mask = read_rgb8(args.mask)[..., 0] > 0
+    mask = relit_error.read_rgb(args.mask, oiio.UINT8)[..., 0] > 0
     frame = np.ones((height, width), bool)
     with tempfile.TemporaryDirectory() as scratch:
         stack = os.path.join(scratch, "stack.rgb")

@@ -4,12 +4,15 @@ a light vector (`relume lights` rows: one r g b weight per light, '#' lines skip
 reference; an image relit from a compressed form is scored by its relative squared error
 sum((relit - reference)^2) / sum(reference^2) over the whole frame. The light images count as
 linear, value / 255, as `relume compress --linear` reads them. scripts/codec_curve.py imports
-these functions for the codecs' decoded images; the command form scores relume's relit EXR.
+these functions (the light images' reader among them) for the codecs' decoded images; the command
+form scores relume's relit EXR.
 
 Example:
   relume relight ball.relume --lights grace.txt -o relit.exr
   scripts/relit_error.py ball8/ grace.txt relit.exr
 """
+import glob
+import os
 import sys
 
 import numpy as np
@@ -45,24 +48,31 @@ def relative_error(relit, reference):
     return float(((relit - reference) ** 2).sum() / max((reference ** 2).sum(), 1e-30))
 
 
-def read_relit(path):
+def read_rgb(path, pixel_format):
+    """The first three channels of an image file as pixel_format (oiio.UINT8, oiio.FLOAT)."""
     image = oiio.ImageInput.open(path)
     if image is None:
-        sys.exit(f"relit_error.py: cannot read {path}: {oiio.geterror()}")
-    pixels = image.read_image(oiio.FLOAT)
+        sys.exit(f"cannot read {path}: {oiio.geterror()}")
+    pixels = image.read_image(pixel_format)
     image.close()
     return pixels[..., :3]
+
+
+def light_images(folder):
+    names = sorted(f for f in glob.glob(os.path.join(folder, "*.png"))
+                   if os.path.basename(f)[0].isdigit())
+    if not names:
+        sys.exit(f"{folder}: no numbered PNG light images")
+    return np.stack([read_rgb(name, oiio.UINT8) for name in names])  # lights x H x W x 3, uint8
 
 
 def main():
     if len(sys.argv) != 4:
         sys.exit(__doc__)
-    from codec_curve import light_images  # which imports this module's functions
-
     folder, vector_path, relit_path = sys.argv[1:]
     images = light_images(folder)
     reference = relight(planar(images), light_vector(vector_path), *images.shape[1:3])
-    print(relative_error(read_relit(relit_path), reference))
+    print(relative_error(read_rgb(relit_path, oiio.FLOAT), reference))
 
 
 if __name__ == "__main__":
