@@ -28,10 +28,12 @@ def read_image(path):
     if image is None:
         fail(f"cannot read {path}: {oiio.geterror()}")
     spec = image.spec()
-    if spec.format in (oiio.HALF, oiio.FLOAT, oiio.DOUBLE):
-        pixels = image.read_image(format=oiio.FLOAT)
+    if spec.format.basetype in (oiio.HALF, oiio.FLOAT, oiio.DOUBLE):
+        pixels = np.asarray(image.read_image(format=oiio.FLOAT), dtype=np.float64)
         image.close()
-        return np.asarray(pixels, dtype=np.float64)
+        if not np.isfinite(pixels).all():
+            fail(f"{path}: {np.count_nonzero(~np.isfinite(pixels))} values are NaN or infinite")
+        return pixels
     bits = 16 if spec.format == oiio.UINT16 else 8
     pixels = image.read_image(format=oiio.UINT16 if bits == 16 else oiio.UINT8)
     image.close()
