@@ -5,7 +5,8 @@ as `relume synth`'s EXR, as they are), divided by its row of light_intensities.t
 times GAIN, clipped to [0, 1], rounded to 8 bits, written as PNG under the image's name with the
 extension .png. filenames.txt lists those names; light_directions.txt is copied,
 light_intensities.txt is left out (the images are already divided by it), mask.png is copied
-unless --no-mask. Uses NumPy and OpenImageIO's Python bindings only, none of relume's code.
+unless --no-mask. The folder is written as OUTPUT_FOLDER.part and renamed when complete (an
+earlier OUTPUT_FOLDER replaced), so a failed or interrupted run leaves no folder that looks done. Uses NumPy and OpenImageIO's Python bindings only, none of relume's code.
 
 Usage: scripts/normalize_to_8bit.py INPUT_FOLDER OUTPUT_FOLDER [--gain 5.3396] [--no-mask]
 """
@@ -54,7 +55,9 @@ def main():
     intensities = np.loadtxt(os.path.join(args.input, "light_intensities.txt"), ndmin=2)
     if intensities.shape != (len(names), 3):
         fail(f"light_intensities.txt has shape {intensities.shape}, expected ({len(names)}, 3)")
-    os.makedirs(args.output, exist_ok=True)
+    final_output, args.output = args.output, args.output.rstrip("/") + ".part"
+    shutil.rmtree(args.output, ignore_errors=True)
+    os.makedirs(args.output)
     written = []
     for i, name in enumerate(names):
         values = read_image(os.path.join(args.input, name))[..., :3] / intensities[i] * args.gain
@@ -71,7 +74,9 @@ def main():
     shutil.copy(os.path.join(args.input, "light_directions.txt"), args.output)
     if not args.no_mask and os.path.isfile(os.path.join(args.input, "mask.png")):
         shutil.copy(os.path.join(args.input, "mask.png"), args.output)
-    print(f"wrote {len(names)} 8-bit images to {args.output}")
+    shutil.rmtree(final_output, ignore_errors=True)
+    os.rename(args.output, final_output)
+    print(f"wrote {len(names)} 8-bit images to {final_output}")
 
 
 if __name__ == "__main__":
