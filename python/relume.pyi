@@ -87,6 +87,7 @@ class CompressOptions:
     solver: str = "irls"
     transform: str = "identity"
     light_weighting: float = 0.0
+    channel_clusters: str = "shared"
     multires: int = 0
     refine: int = -1
     iterations: int = 4
@@ -251,6 +252,7 @@ def compress(
     solver: str = "irls",
     transform: str = "identity",
     light_weighting: float = 0.0,
+    channel_clusters: str = "shared",
     multires: int = 0,
     refine: int = -1,
     iterations: int = 4,
@@ -303,6 +305,7 @@ def compress_file(
     solver: str = "irls",
     transform: str = "identity",
     light_weighting: float = 0.0,
+    channel_clusters: str = "shared",
     multires: int = 0,
     refine: int = -1,
     iterations: int = 4,

@@ -23,7 +23,13 @@
 # |relit - reference| x 8 side by side, all three exposed to the reference's white (its lit 99th
 # percentile / 0.9, as --exposure auto). About 30 minutes on 2 cores.
 #
-#   scripts/bench_relit_quality.sh [BUILD_DIR] [OUT_DIR] [weighting|seams|all]
+# channels (issue 33): one cluster per pixel (`--channel-clusters shared`, the default) against
+# each colour channel clustered on its own (`separate`), on the seams part's subjects and
+# lightings at the demo's settings (scene), the README's lion settings and the defaults (ball,
+# pot1): the same measures and bytes per pixel in OUT_DIR/channels.csv, images in
+# OUT_DIR/channels/. About 15 minutes on 2 cores.
+#
+#   scripts/bench_relit_quality.sh [BUILD_DIR] [OUT_DIR] [weighting|seams|channels|all]
 # RELUME_DATA: the shared data folder (default ../shared/data). Needs python3 with numpy and
 # OpenImageIO's bindings at /usr/bin/python3 (scripts/install_deps.sh).
 set -euo pipefail
@@ -183,13 +189,15 @@ EOF
 # relight per lighting (sky: the built-in sky; raking15, raking30: a light from the left at that
 # elevation; otherwise a map of the shared envmaps/ turned onto the lights), then per setting a
 # compression and, per lighting, its relight measured and shown side by side.
+# The part whose table and images measure_subject writes: OUT_DIR/TABLE.csv and OUT_DIR/TABLE/.
+table=seams
 measure_subject() {
   local subject=$1 input=$2 lighting lights rate=0 setting model name bytes_per_pixel row
   local -a settings
   IFS='|' read -r -a settings <<<"$3"
   shift 3
   for lighting in "$@"; do
-    lights="$out/seams/$subject-$lighting.txt"
+    lights="$out/$table/$subject-$lighting.txt"
     case $lighting in
       sky) "$relume" -q -y lights --dirs "$input" --env "$out/sky.exr" -o "$lights" ;;
       raking15) "$relume" -q -y lights --dirs "$input" --light-dir -0.966,0,0.259 -o "$lights" ;;
@@ -198,37 +206,43 @@ measure_subject() {
         -o "$lights" ;;
     esac
     "$relume" -q -y relight "$input" --lights "$lights" \
-      -o "$out/seams/$subject-$lighting-reference.exr"
+      -o "$out/$table/$subject-$lighting-reference.exr"
   done
   for setting in "${settings[@]}"; do
     rate=$((rate + 1))
-    echo "seams: $subject, $setting" >&2
-    model="$out/seams/$subject-r$rate.relume"
+    echo "$table: $subject, $setting" >&2
+    model="$out/$table/$subject-r$rate.relume"
     # shellcheck disable=SC2086  # the options are words
-    "$relume" compress -q -y "$input" -o "$model" $setting --report "$out/seams/report.json"
+    "$relume" compress -q -y "$input" -o "$model" $setting --report "$out/$table/report.json"
     bytes_per_pixel=$(/usr/bin/python3 -c 'import json, sys
-print("%.2f" % json.load(open(sys.argv[1]))["bytes_per_pixel"])' "$out/seams/report.json")
+print("%.2f" % json.load(open(sys.argv[1]))["bytes_per_pixel"])' "$out/$table/report.json")
     for lighting in "$@"; do
       name="$subject-r$rate-$lighting"
-      "$relume" -q -y relight "$model" --lights "$out/seams/$subject-$lighting.txt" \
-        -o "$out/seams/$name.exr"
-      row=$("$relume" compare "$out/seams/$name.exr" \
-        "$out/seams/$subject-$lighting-reference.exr" --model "$model" --json - 2>/dev/null |
+      "$relume" -q -y relight "$model" --lights "$out/$table/$subject-$lighting.txt" \
+        -o "$out/$table/$name.exr"
+      row=$("$relume" compare "$out/$table/$name.exr" \
+        "$out/$table/$subject-$lighting-reference.exr" --model "$model" --json - 2>/dev/null |
         quality_row)
-      echo "$subject,$setting,$bytes_per_pixel,$lighting,$row" >>"$out/seams.csv"
-      side_by_side "$out/seams/$name.exr" "$out/seams/$subject-$lighting-reference.exr" \
-        "$out/seams/$name.png"
+      echo "$subject,$setting,$bytes_per_pixel,$lighting,$row" >>"$out/$table.csv"
+      side_by_side "$out/$table/$name.exr" "$out/$table/$subject-$lighting-reference.exr" \
+        "$out/$table/$name.png"
     done
   done
 }
 
-seams_bench() {
-  echo "== seams" >&2
+# Starts the part TABLE: its folder and the header of its table.
+start_table() {
+  table=$1
+  echo "== $table" >&2
   make_demo_scene
-  mkdir -p "$out/seams"
+  mkdir -p "$out/$table"
   echo "subject,setting,bytes_per_pixel,lighting,relative_l2,ssim_mean,ssim_worst_1_percent,\
 seam_contrast,split_channels_percent,black_pixels,lit_pixels,chroma_outliers_percent,\
-channel_sums_rgb" >"$out/seams.csv"
+channel_sums_rgb" >"$out/$table.csv"
+}
+
+seams_bench() {
+  start_table seams
   local maps=(sky grace_cross stpeters_cross)
   # The demo's scene: a low rate, the demo's settings (scripts/demo.sh) and a high rate.
   measure_subject scene "$scene" "--clusters 16 --terms 4 --residual 2|\
@@ -240,18 +254,36 @@ channel_sums_rgb" >"$out/seams.csv"
   measure_subject lion "$data/olat/rti-loewenkopf/dirs.lp" "$captured" raking15 raking30
   measure_subject ball "$data/olat/diligent-ball-16bit" "$captured" "${maps[@]}"
   measure_subject pot1 "$data/olat/diligent-pot1-crop8" "$captured" "${maps[@]}"
-  column -s, -t <"$out/seams.csv"
+  column -s, -t <"$out/$table.csv"
+}
+
+channels_bench() {
+  start_table channels
+  local maps=(sky grace_cross stpeters_cross) defaults="--clusters 64 --terms 4"
+  measure_subject scene "$scene" "\
+--clusters 64 --terms 8 --residual 7 --light-weighting 0.5 --channel-clusters separate|\
+--clusters 64 --terms 8 --residual 7 --light-weighting 0.5 --channel-clusters shared" "${maps[@]}"
+  local lion="--clusters 16 --terms 4"
+  measure_subject lion "$data/olat/rti-loewenkopf/dirs.lp" "\
+$lion --channel-clusters separate|$lion --channel-clusters shared" raking15 raking30
+  measure_subject ball "$data/olat/diligent-ball-16bit" "\
+$defaults --channel-clusters separate|$defaults --channel-clusters shared" "${maps[@]}"
+  measure_subject pot1 "$data/olat/diligent-pot1-crop8" "\
+$defaults --channel-clusters separate|$defaults --channel-clusters shared" "${maps[@]}"
+  column -s, -t <"$out/$table.csv"
 }
 
 case $part in
   weighting) light_weighting_bench ;;
   seams) seams_bench ;;
+  channels) channels_bench ;;
   all)
     light_weighting_bench
     seams_bench
+    channels_bench
     ;;
   *)
-    echo "bench_relit_quality.sh: part '$part' is not weighting, seams or all" >&2
+    echo "bench_relit_quality.sh: part '$part' is not weighting, seams, channels or all" >&2
     exit 2
     ;;
 esac

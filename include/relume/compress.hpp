@@ -58,6 +58,10 @@ struct CompressOptions {
   // accuracy; better relit images under concentrated back light, a higher Eq. 16 error. 0: the
   // paper's objective. Identity transform only.
   double light_weighting = 0;
+  // "shared": the colour channels of a pixel go to one cluster, so that their errors come from
+  // one basis (grey, not coloured; docs/relit_quality.md); "separate": each channel is clustered
+  // on its own (the paper's model).
+  std::string channel_clusters = "shared";
   int multires = 0;  // levels: cluster a field downsampled 2x per level first
   // Full-resolution iterations after multi-resolution clustering, or a streamed compression's
   // passes over all functions; -1: 2 after multi-resolution, `iterations` streamed.

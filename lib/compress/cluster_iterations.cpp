@@ -7,6 +7,7 @@
 
 #include "compress/cluster_basis.hpp"
 #include "compress/cluster_seeding.hpp"
+#include "compress/pixel_clusters.hpp"
 #include "core/console.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/interruption.hpp"
@@ -48,12 +49,23 @@ std::size_t reassign(const WorkingRows& rows, ClusterModel& model, const Cluster
   AssignmentResult result =
       run_assignment(rows, model, candidates, options,
                      "compress: iteration " + std::to_string(record.iteration) + ", assigning");
-  trace.assignment_seconds += seconds_since(start);
-  std::size_t changed = 0;
-  for (std::size_t r = 0; r < rows.rows(); ++r) changed += result.best[r] != model.assignment[r];
+  record.objective = result.total_objective();
+  std::vector<std::int32_t> previous = std::move(model.assignment);
   model.assignment = std::move(result.best);
   model.weights = std::move(result.weights);
-  record.objective = result.total_objective();
+  if (options.shared_pixel_clusters) {
+    const PixelClusterChange shared =
+        share_pixel_clusters(rows, model, [&](const CandidateLists& lists) {
+          return run_assignment(rows, model, lists, options,
+                                "compress: iteration " + std::to_string(record.iteration) +
+                                    ", one cluster per pixel");
+        });
+    record.split_pixels = shared.split_pixels;
+    record.objective += shared.objective_change;
+  }
+  trace.assignment_seconds += seconds_since(start);
+  std::size_t changed = 0;
+  for (std::size_t r = 0; r < rows.rows(); ++r) changed += previous[r] != model.assignment[r];
 
   start = Clock::now();
   record.size_rules = enforce_cluster_sizes(rows, model, options.sizes, options.candidates,

@@ -30,8 +30,11 @@ struct ClusteringOptions {
   int max_iterations = compress_defaults().iterations;  // L1 iterations (F-step + reassignment)
   double settle_fraction = 0.002;  // stop once fewer than this fraction of rows change cluster
   int candidates = compress_defaults().candidates;  // clusters given the exact L1 fit per row
-  IrlsSettings weight_fit;         // the W fits (assignment)
-  IrlsSettings basis_fit;          // the F-step
+  // After each reassignment, a pixel's rows (WorkingRows::pixel) go to one cluster
+  // (compress/pixel_clusters.hpp).
+  bool shared_pixel_clusters = compress_defaults().channel_clusters == "shared";
+  IrlsSettings weight_fit;  // the W fits (assignment)
+  IrlsSettings basis_fit;   // the F-step
   ClusterSizeLimits sizes;
   int l2_rounds = 4;
   int seed_sample_rows = 20000;
@@ -45,10 +48,11 @@ struct ClusteringOptions {
 };
 
 struct IterationRecord {
-  int iteration = 0;        // 0 = the first assignment after seeding
-  double objective = 0;     // sum over rows of the L1 residual (unit-norm rows)
-  std::size_t changed = 0;  // rows that changed cluster
-  int clusters = 0;         // after the size rules
+  int iteration = 0;             // 0 = the first assignment after seeding
+  double objective = 0;          // sum over rows of the L1 residual (unit-norm rows)
+  std::size_t changed = 0;       // rows that changed cluster
+  std::size_t split_pixels = 0;  // pixels whose channels the reassignment put in several clusters
+  int clusters = 0;              // after the size rules
   SizeRuleChanges size_rules;
   double seconds = 0;
 };

@@ -68,9 +68,11 @@ PreparedRows prepare_rows(const ReflectanceField& field, bool haar_transform,
   WorkingRows& rows = prepared.rows;
   rows.values.resize(static_cast<Eigen::Index>(prepared.functions.size()), lights);
   rows.norms.resize(prepared.functions.size());
+  rows.pixel.resize(prepared.functions.size());
   parallel_for(prepared.functions.size(), threads, [&](std::size_t r, unsigned) {
     auto out = rows.values.row(static_cast<Eigen::Index>(r));
     out = field.values.row(prepared.functions[r]);
+    rows.pixel[r] = prepared.functions[r] / std::uint32_t(field.channels);
     for (std::size_t i = 0; i < light_scale.size(); ++i) out[Eigen::Index(i)] /= light_scale[i];
     if (haar_transform) haar_forward(out.data(), lights, 1);
     const double norm = out.cast<double>().norm();

@@ -17,6 +17,9 @@ namespace relume {
 struct WorkingRows {
   RowMatrixF values;         // rows x lights, every row of unit L2 norm
   std::vector<float> norms;  // each row's original L2 norm (> 0)
+  // Each row's pixel when the rows are a field's colour channels (the rows of a pixel are
+  // consecutive); empty: the rows are unrelated.
+  std::vector<std::uint32_t> pixel;
 
   int lights() const { return static_cast<int>(values.cols()); }
   std::size_t rows() const { return static_cast<std::size_t>(values.rows()); }

@@ -287,9 +287,12 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
     model = cluster_prepared_rows(prepared.rows, field.lights(), options, stats, hook, resume);
   }
   stats.residual_entries = options.residual.entries_for(field.lights());
-  if (options.trimmed_refit_rounds >= 0 && !prepared.functions.empty() &&
-      stats.residual_entries + model.terms < model.lights)
-    refit_for_budget(prepared.rows, options, stats, model);
+  const bool refit = options.trimmed_refit_rounds >= 0 && !prepared.functions.empty() &&
+                     stats.residual_entries + model.terms < model.lights;
+  if (refit) refit_for_budget(prepared.rows, options, stats, model);
+  // The trimmed refit reassigns each row on its own.
+  stats.shared_pixel_clusters =
+      options.method == CompressionMethod::l1 && clustering.shared_pixel_clusters && !refit;
   stats.clusters = model.clusters;
   stats.clustering_seconds = seconds_since(start);
 

@@ -76,8 +76,12 @@ struct CompressionStats {
   std::int64_t outside_mask = 0;
   std::int64_t all_zero = 0;
   std::size_t stored_rows = 0;
-  std::size_t dark_pixels = 0;   // pixels relit by the dark model
-  bool one_basis = false;        // the one-basis model (global_basis.hpp) was stored, no clusters
+  std::size_t dark_pixels = 0;  // pixels relit by the dark model
+  bool one_basis = false;       // the one-basis model (global_basis.hpp) was stored, no clusters
+  // A pixel's channels were clustered together (compress/pixel_clusters.hpp); false where each
+  // channel was clustered on its own: asked, clustered PCA, the trimmed refit, or a streamed
+  // compression.
+  bool shared_pixel_clusters = false;
   NoiseModel noise;              // as used
   float residual_threshold = 0;  // as used
   int clusters_asked = 0;

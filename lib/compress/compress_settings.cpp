@@ -66,6 +66,7 @@ CompressSettings compress_settings(const CompressOptions& options) {
   check_choice("--transform", options.transform, {"identity", "haar"});
   check_choice("--assign", options.assign, {"opencl", "cpu"});
   check_choice("--target-region", options.target_region, {"frame", "mask"});
+  check_choice("--channel-clusters", options.channel_clusters, {"shared", "separate"});
   check_choice("--target-models", options.target_models, {"all", "clustered", "one-basis"});
   parse_input_encoding(options.input_encoding);
   if (options.irls_iterations < 0)
@@ -94,6 +95,7 @@ CompressSettings compress_settings(const CompressOptions& options) {
   clustering.terms = options.terms;
   clustering.max_iterations = options.iterations;
   clustering.candidates = options.candidates;
+  clustering.shared_pixel_clusters = options.channel_clusters == "shared";
   clustering.weight_fit.iterations = options.irls_iterations;
   clustering.basis_fit.iterations = options.irls_iterations;
   clustering.sizes.minimum = options.min_cluster_size;
@@ -137,6 +139,7 @@ std::string checkpoint_fingerprint(const std::string& input, const CompressOptio
                         {"terms", clustering.terms},
                         {"transform", options.transform},
                         {"light_weighting", compression.light_weighting},
+                        {"shared_pixel_clusters", clustering.shared_pixel_clusters},
                         {"multires", compression.multires_levels},
                         {"candidates", clustering.candidates},
                         {"min", clustering.sizes.minimum},

@@ -214,9 +214,9 @@ class CompressionRunner {
       if (!asked_.quiet)
         note(
             "compress: iteration %d: L1 objective %.6g, %zu of %zu functions changed cluster, "
-            "%d clusters, %.2f s",
+            "%zu pixels' channels moved into one cluster, %d clusters, %.2f s",
             record.iteration, record.objective, record.changed, model.assignment.size(),
-            record.clusters, record.seconds);
+            record.split_pixels, record.clusters, record.seconds);
     };
   }
 

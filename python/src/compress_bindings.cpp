@@ -98,6 +98,7 @@ arguments; relume.CompressOptions() shows the defaults.)");
   RELUME_OPTION(solver);
   RELUME_OPTION(transform);
   RELUME_OPTION(light_weighting);
+  RELUME_OPTION(channel_clusters);
   RELUME_OPTION(multires);
   RELUME_OPTION(refine);
   RELUME_OPTION(iterations);

@@ -67,6 +67,9 @@ CompressionOptions options_for(int clusters, int terms, int residual) {
   options.clustering.terms = terms;
   options.clustering.quiet = true;
   options.clustering.threads = 2;
+  // Every function is planted in a cluster of its own choosing, whatever its pixel's other
+  // channels: each channel is clustered on its own.
+  options.clustering.shared_pixel_clusters = false;
   options.residual.entries = residual;
   // The planted functions are exact and spatially unrelated, so that no estimate tells them
   // from noise: no noise floor, every function stored.
@@ -243,6 +246,48 @@ TEST(ClusteredFactorization, SmallClustersMergeIntoTheClusterThatFitsTheirRows) 
   EXPECT_EQ(model.clusters, 2);
   EXPECT_EQ(model.bases.size(), 2u * 2 * 32);
   for (int m = 0; m < 5; ++m) EXPECT_EQ(model.assignment[planted_members[0][m]], 0);
+}
+
+// The pixels whose channels are not all in one cluster.
+std::size_t split_pixels(const CompressedField& compressed) {
+  std::map<std::uint32_t, std::set<std::uint32_t>> clusters;
+  for (std::size_t r = 0; r < compressed.stored_rows(); ++r)
+    clusters[compressed.stored_function[r] / 3].insert(compressed.cluster[r]);
+  std::size_t split = 0;
+  for (const auto& [pixel, set] : clusters) split += set.size() > 1;
+  return split;
+}
+
+TEST(ClusteredFactorization, SharedPixelClustersPutAPixelsChannelsInOneCluster) {
+  // Each pixel's three channels are multiples of one function of its cluster (a colour times a
+  // shading) plus noise that lets the channels' own fits prefer different clusters.
+  const int width = 30, height = 20, clusters = 6, terms = 3, lights = 48;
+  PlantedField planted = planted_field(width, height, clusters, terms, lights, 0, 17);
+  ReflectanceField& field = planted.field;
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<float> colour(0.3f, 1.0f);
+  std::normal_distribution<float> noise(0.0f, 1.0f);
+  for (std::int64_t q = 0; q < field.pixels(); ++q)
+    for (int c = 1; c < 3; ++c)
+      field.values.row(q * 3 + c) = colour(random) * field.values.row(q * 3);
+  for (std::int64_t i = 0; i < field.values.size(); ++i) field.values.data()[i] += noise(random);
+  const auto compressed_with = [&](bool shared, CompressionStats& stats) {
+    CompressionOptions options = options_for(clusters, terms, 0);
+    options.clustering.shared_pixel_clusters = shared;
+    return compress_field(field, options, stats);
+  };
+  CompressionStats separate_stats, shared_stats;
+  const CompressedField separate = compressed_with(false, separate_stats);
+  const CompressedField shared = compressed_with(true, shared_stats);
+  ASSERT_GT(split_pixels(separate), std::size_t(width * height / 20)) << "the test needs splits";
+  EXPECT_EQ(split_pixels(shared), 0u);
+  EXPECT_GT(shared_stats.clustering.iterations.back().split_pixels, 0u)
+      << "the last reassignment split pixels that the sharing joined";
+  // Joining costs some fit, not much: the channels' shapes are alike.
+  const double separate_error = relative_error(field, separate, false).mean;
+  const double shared_error = relative_error(field, shared, false).mean;
+  EXPECT_LT(shared_error, 1.1 * separate_error);
+  EXPECT_NO_THROW(validate_compressed_field(shared, "shared"));
 }
 
 TEST(ClusteredFactorization, RefusesBadSettings) {

@@ -84,6 +84,8 @@ CompressionOptions options_for(CompressionMethod method, int clusters, int terms
   options.clustering.terms = terms;
   options.clustering.quiet = true;
   options.clustering.threads = 2;
+  // Each function is planted in its own cluster, whatever its pixel's other channels.
+  options.clustering.shared_pixel_clusters = false;
   options.residual.entries = entries;
   // The planted functions are exact and spatially unrelated, so that no estimate tells them
   // from noise: no noise floor, every function stored.

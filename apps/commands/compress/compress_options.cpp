@@ -75,6 +75,13 @@ void add_clustering_options(CLI::App& command, CompressOptions& options) {
   command.add_option("--solver", options.solver,
                      "irls: the fast IRLS L1 fits only (default); lp-dual, lp or huber: refit "
                      "every cluster's F and W exactly with that solver after the iterations");
+  command
+      .add_option("--channel-clusters", options.channel_clusters,
+                  "shared: a pixel's colour channels go to one cluster, so that their errors "
+                  "come from one basis and show grey rather than as coloured specks (default); "
+                  "separate: each channel is clustered on its own, as in the paper")
+      ->check(CLI::IsMember({"shared", "separate"}))
+      ->capture_default_str();
   command.add_option("--multires", options.multires,
                      "Cluster a field downsampled 2x per level first, then assign full-resolution "
                      "functions among the clusters near them (default 0: off)");

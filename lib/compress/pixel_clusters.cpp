@@ -1,0 +1,89 @@
+// Implementation of one cluster per pixel (see pixel_clusters.hpp).
+#include "compress/pixel_clusters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace relume {
+namespace {
+
+// A pixel's rows [first, first + count) and the distinct clusters they are in, ascending.
+struct SplitPixel {
+  std::size_t first = 0, count = 0;
+  std::vector<std::int32_t> clusters;
+};
+
+std::vector<SplitPixel> split_pixels(const WorkingRows& rows, const ClusterModel& model) {
+  std::vector<SplitPixel> split;
+  const std::size_t count = rows.pixel.size();
+  for (std::size_t first = 0, end = 0; first < count; first = end) {
+    end = first + 1;
+    while (end < count && rows.pixel[end] == rows.pixel[first]) ++end;
+    SplitPixel pixel{first, end - first, {}};
+    for (std::size_t r = first; r < end; ++r) pixel.clusters.push_back(model.assignment[r]);
+    std::sort(pixel.clusters.begin(), pixel.clusters.end());
+    pixel.clusters.erase(std::unique(pixel.clusters.begin(), pixel.clusters.end()),
+                         pixel.clusters.end());
+    if (pixel.clusters.size() > 1) split.push_back(std::move(pixel));
+  }
+  return split;
+}
+
+}  // namespace
+
+PixelClusterChange share_pixel_clusters(const WorkingRows& rows, ClusterModel& model,
+                                        const CandidateFits& fit) {
+  PixelClusterChange change;
+  if (rows.pixel.empty()) return change;
+  const std::vector<SplitPixel> split = split_pixels(rows, model);
+  change.split_pixels = split.size();
+  if (split.empty()) return change;
+  std::size_t passes = 0;
+  for (const SplitPixel& pixel : split) passes = std::max(passes, pixel.clusters.size());
+
+  // The chosen slot of every split pixel and its cost so far (summed L1 residual x norm).
+  std::vector<std::size_t> chosen(split.size(), 0);
+  std::vector<double> cost(split.size(), HUGE_VAL);
+  std::vector<float> objective(rows.rows(), 0.0f), before(rows.rows(), 0.0f);
+  // Pass s fits every split pixel's rows to its s-th cluster; a pass keeps the fits of the pixels
+  // whose cost it lowers.
+  for (std::size_t s = 0; s < passes; ++s) {
+    CandidateLists lists;
+    lists.width = 1;
+    lists.clusters.assign(rows.rows(), -1);
+    for (const SplitPixel& pixel : split)
+      if (s < pixel.clusters.size())
+        std::fill_n(lists.clusters.begin() + std::ptrdiff_t(pixel.first), pixel.count,
+                    pixel.clusters[s]);
+    const AssignmentResult result = fit(lists);
+    for (std::size_t g = 0; g < split.size(); ++g) {
+      const SplitPixel& pixel = split[g];
+      if (s >= pixel.clusters.size()) continue;
+      double sum = 0;
+      for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
+        sum += double(result.objective[r]) * rows.norms[r];
+        if (model.assignment[r] == pixel.clusters[s]) before[r] = result.objective[r];
+      }
+      if (sum >= cost[g]) continue;
+      cost[g] = sum;
+      chosen[g] = s;
+      for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
+        objective[r] = result.objective[r];
+        model.weights.row(Eigen::Index(r)) = result.weights.row(Eigen::Index(r));
+      }
+    }
+  }
+  for (std::size_t g = 0; g < split.size(); ++g) {
+    const SplitPixel& pixel = split[g];
+    const std::int32_t cluster = pixel.clusters[chosen[g]];
+    for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
+      change.rows_moved += model.assignment[r] != cluster;
+      change.objective_change += double(objective[r]) - before[r];
+      model.assignment[r] = cluster;
+    }
+  }
+  return change;
+}
+
+}  // namespace relume
