@@ -45,8 +45,8 @@ struct CompressOptions {
   // Field units. A pixel whose every channel is, within noise_floor (RMS over the lights), a
   // multiple of the dark shape has no stored rows (the dark model); 0: every pixel is stored.
   // Negative: 3 x the noise deviation estimated from the field (compress/noise_model.hpp).
-  // Residual entries with |value| at or below threshold are dropped; negative: the estimated
-  // deviation, or noise_floor when one is given.
+  // Residual entries with |value| at or below threshold are dropped; negative: 3 x the estimated
+  // deviation (at least the input's quantization step), or noise_floor when one is given.
   float noise_floor = -1.0f;
   float threshold = -1.0f;
   // "irls": the IRLS fits only; "lp-dual", "lp" or "huber": refit every cluster's F and W

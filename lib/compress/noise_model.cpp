@@ -153,7 +153,7 @@ float default_residual_threshold(const NoiseModel& model, const ReflectanceField
       model.sigma.empty()
           ? 0.0
           : std::accumulate(model.sigma.begin(), model.sigma.end(), 0.0) / model.sigma.size();
-  return std::max(float(mean), field.noise_floor);
+  return std::max(residual_threshold_sigmas * float(mean), field.noise_floor);
 }
 
 }  // namespace relume

@@ -143,7 +143,8 @@ TEST(DarkModel, CompressReconstructsStoresAndRelightsDarkPixelsAsGainTimesShape)
   ASSERT_EQ(compressed.dark_gains.size(), compressed.dark_pixels.size() * 3);
   validate_compressed_field(compressed, "dark");
   // The residual threshold follows the noise unless set: no entry at or below it.
-  EXPECT_GT(stats.residual_threshold, 0.5f * noise_sigma);
+  EXPECT_GT(stats.residual_threshold, 0.5f * residual_threshold_sigmas * noise_sigma);
+  EXPECT_LT(stats.residual_threshold, 2.0f * residual_threshold_sigmas * noise_sigma);
   for (float v : compressed.residual.values) EXPECT_GT(std::abs(v), stats.residual_threshold);
 
   const ReflectanceField back = reconstruct_field(compressed);

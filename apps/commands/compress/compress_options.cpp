@@ -55,8 +55,9 @@ void add_method_options(CLI::App& command, CompressArguments& arguments) {
                      "Default: 3 x the camera noise estimated from the images themselves "
                      "(reported in the summary and the report). Example: --noise-floor 0");
   command.add_option("--threshold", options.threshold,
-                     "Drop residual entries with |value| <= X, in field units (default: the "
-                     "estimated noise deviation, or the noise floor when given)");
+                     "Drop residual entries with |value| <= X, in field units (default: 3 x the "
+                     "estimated noise deviation, at least the input's quantization step; the "
+                     "noise floor when one is given)");
   command.add_option("--transform", options.transform,
                      "Basis of the factorization: identity (default) or haar (orthonormal Haar "
                      "wavelet over the light order; the residual is sparse in that basis)");
