@@ -6,8 +6,8 @@
 # deviation and 3 entries per function instead of 5: a rate cut by the entry count for
 # comparison. Per point: bytes per pixel, the 8-bit PSNR inside the mask and over the frame, and
 # the relit error under Grace Cathedral (turned onto the lights) against the captured images
-# relit the same way (relative squared error, `relume compare`). The default is 3 deviations, at
-# least the input's quantization step (lib/compress/noise_model.hpp).
+# relit the same way (relative squared error, `relume compare`); and the default run itself: 3
+# deviations, at least the input's quantization step (lib/compress/noise_model.hpp).
 #   scripts/bench_residual_threshold.sh [BUILD_DIR] [OUT_DIR]
 # RELUME_DATA: the shared data folder (default ../shared/data). Writes OUT_DIR/thresholds.csv and
 # prints it as a table. About 10 minutes on 2 cores.
@@ -26,6 +26,18 @@ value = json.load(open(sys.argv[1]))
 for key in sys.argv[2].split("."):
     value = value[key]
 print(sum(value) / len(value) if isinstance(value, list) else value)' "$1" "$2"
+}
+
+# REPORT -> bytes per pixel, PSNR in the mask and over the frame, comma-separated.
+point() {
+  echo "$(report_value "$1" bytes_per_pixel),$(report_value "$1" psnr_8bit.mask),\
+$(report_value "$1" psnr_8bit.whole_frame)"
+}
+
+# IMAGE -> its relative squared error against the capture's reference relight.
+relit_error() {
+  "$relume" compare "$1" "$out/$capture-reference.exr" --json - 2>/dev/null |
+    /usr/bin/python3 -c 'import json, sys; print(json.load(sys.stdin)["relative_squared_error"])'
 }
 
 echo "capture,setting,threshold,bytes_per_pixel,psnr_mask,psnr_frame,relit_error_grace" \
@@ -49,11 +61,14 @@ for capture in diligent-ball-16bit diligent-bear-crop8 diligent-pot1-crop8; do
     "$relume" compress -q -y "$input" -o "$name.relume" --report "$name.json" \
       --threshold "$threshold" $(echo "$setting" | cut -s -d' ' -f2-)
     "$relume" -q -y relight "$name.relume" --lights "$out/$capture-grace.txt" -o "$name.exr"
-    relit=$("$relume" compare "$name.exr" "$out/$capture-reference.exr" --json - 2>/dev/null |
-      /usr/bin/python3 -c 'import json, sys; print(json.load(sys.stdin)["relative_squared_error"])')
-    echo "$capture,${k} deviations$([ "$k" = "$setting" ] || echo ", 3 entries"),$threshold,\
-$(report_value "$name.json" bytes_per_pixel),$(report_value "$name.json" psnr_8bit.mask),\
-$(report_value "$name.json" psnr_8bit.whole_frame),$relit" >>"$out/thresholds.csv"
+    relit=$(relit_error "$name.exr")
+    echo "$capture,${k} deviations$([ "$k" = "$setting" ] || echo " and 3 entries"),$threshold,\
+$(point "$name.json"),$relit" >>"$out/thresholds.csv"
   done
+  "$relume" -q -y relight "$out/$capture-default.relume" --lights "$out/$capture-grace.txt" \
+    -o "$out/$capture-default.exr"
+  echo "$capture,default,$(report_value "$out/$capture-default.json" parameters.residual_threshold),\
+$(point "$out/$capture-default.json"),$(relit_error "$out/$capture-default.exr")" \
+    >>"$out/thresholds.csv"
 done
 column -s, -t <"$out/thresholds.csv"
