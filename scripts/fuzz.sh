@@ -43,24 +43,38 @@ targets=(
 mkdir -p build-fuzz/findings
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-failed=0
-for entry in "${targets[@]}"; do
-  target="${entry%%:*}"
-  corpus="build-fuzz/corpus/$target"
+# Runs one target ("name:reader") on a fresh copy of its reader's seeds and prints the outcome;
+# fails on a finding.
+fuzz_target() {
+  local target="${1%%:*}" corpus="build-fuzz/corpus/${1%%:*}"
   rm -rf "$corpus"
   mkdir -p "$corpus"
-  cp "fuzz/corpus/${entry#*:}"/* "$corpus"/
-  echo "fuzz.sh: $target for ${seconds} s"
+  cp "fuzz/corpus/${1#*:}"/* "$corpus"/
   if ! build-fuzz/fuzz/"$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
       -malloc_limit_mb=512 -max_len=16384 -print_final_stats=1 \
       -artifact_prefix="build-fuzz/findings/$target-" "$corpus" 2>"build-fuzz/$target.log"; then
     tail -n 40 "build-fuzz/$target.log"
     echo "fuzz.sh: $target FAILED (input in build-fuzz/findings/, log build-fuzz/$target.log)"
-    failed=1
-  else
-    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/$target.log" |
-      tr '\n' ' ' | sed "s/^/fuzz.sh: $target: /"
-    echo
+    return 1
   fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/$target.log" |
+    tr '\n' ' ' | sed "s/^/fuzz.sh: $target: /"
+  echo
+}
+
+# One target per core at a time (each fuzzer runs on one thread).
+echo "fuzz.sh: ${#targets[@]} targets for ${seconds} s each, $(nproc) at a time"
+failed=0
+running=()
+for entry in "${targets[@]}"; do
+  fuzz_target "$entry" &
+  running+=($!)
+  if [ "${#running[@]}" -ge "$(nproc)" ]; then
+    wait "${running[0]}" || failed=1
+    running=("${running[@]:1}")
+  fi
+done
+for pid in "${running[@]}"; do
+  wait "$pid" || failed=1
 done
 exit "$failed"
