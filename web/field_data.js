@@ -1,14 +1,15 @@
 // field_data.js: fetches what `relume publish` wrote (manifest.json, data/field.bin, the tiles
 // data/tiles/L/C_R.bin and the maps data/env/N.bin: lib/publish/web_layout.hpp and
 // web_bundle.hpp), inflates and unfilters their arrays, and unpacks a tile into the flat arrays
-// the renderer uploads as textures.
+// the renderer uploads as textures (a one-basis field's tiles take their weights from its
+// decoded planes, weight_planes.js).
 
 const arrayTypes = {
   uint8: Uint8Array, uint16: Uint16Array, uint32: Uint32Array, int16: Int16Array,
   float32: Float32Array, med16: Uint16Array,
 };
 
-async function fetchOk(path, base) {
+export async function fetchOk(path, base) {
   const response = await fetch(new URL(path, base));
   if (!response.ok) throw new Error(`${path}: ${response.status} ${response.statusText}`);
   return response;
@@ -88,7 +89,7 @@ export async function fetchBundle(path, arrays, base) {
   return { arrays: result, bytes: buffer.byteLength };
 }
 
-function forEachSetBit(bits, visit) {
+export function forEachSetBit(bits, visit) {
   let ordinal = 0;
   for (let byte = 0; byte < bits.length; ++byte) {
     const value = bits[byte];
@@ -96,6 +97,16 @@ function forEachSetBit(bits, visit) {
     for (let bit = 0; bit < 8; ++bit)
       if (value & (1 << bit)) visit(byte * 8 + bit, ordinal++);
   }
+}
+
+// A tile's unpackTile arrays and the bytes of its file. `region` {width, height, x, y, stride}:
+// its size and where its pixels lie in the field (pixel (x', y') is the field's pixel
+// (x + stride x', y + stride y')); `planes`: a promise of the field's WeightPlanes
+// (weight_planes.js), or null when the tiles hold their weights.
+export async function fetchTile(file, region, field, arrays, base, planes) {
+  const { arrays: a, bytes } = await fetchBundle(file, arrays, base);
+  if (planes) a.weights = (await planes).tileWeights(a, region);
+  return { tile: unpackTile(field, region.width, region.height, a), bytes };
 }
 
 // The median edge detector's prediction (lib/container/weight_prediction.cpp) from the left,

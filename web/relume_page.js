@@ -154,8 +154,12 @@ async function main() {
   function noteFirstImage(complete) {
     if (!complete || firstImage) return;
     renderer.finish();
-    firstImage = { seconds: (performance.now() - started) / 1000, bytes: bytesOnTheWire() };
-    status.textContent = `First image in ${firstImage.seconds.toFixed(2)} s, ` +
+    // planeSeconds: a one-basis field's weight planes, fetched and decoded (else null).
+    firstImage = { seconds: (performance.now() - started) / 1000, bytes: bytesOnTheWire(),
+                   planeSeconds: pyramid.decoder.planeSeconds };
+    const planes = firstImage.planeSeconds === null ? ''
+                 : ` (weights decoded in ${firstImage.planeSeconds.toFixed(2)} s)`;
+    status.textContent = `First image in ${firstImage.seconds.toFixed(2)} s${planes}, ` +
                          `${kilobytes(firstImage.bytes)} fetched`;
   }
   const pad = new LightPad($('light-pad'), manifest.light_cover.directions, (light) => {

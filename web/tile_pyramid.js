@@ -48,11 +48,14 @@ export class TilePyramid {
     let entry = this.tiles.get(key);
     if (!entry) {
       entry = { ready: false, tile: null, used: this.frame };
-      const { width, height } = this.levels[level];
+      const { width, height, stride } = this.levels[level];
       const file = this.manifest.tiles.file.replace('{level}', level).replace('{column}', column)
           .replace('{row}', row);
-      const decoded = this.decoder.decode(file, Math.min(this.size, width - column * this.size),
-                                          Math.min(this.size, height - row * this.size));
+      const decoded = this.decoder.decode(file, {
+        width: Math.min(this.size, width - column * this.size),
+        height: Math.min(this.size, height - row * this.size),
+        x: column * this.size * stride, y: row * this.size * stride, stride,
+      });
       entry.promise = decoded.then(({ tile, bytes }) => {
         this.bytes += bytes;
         entry.tile = this.renderer.uploadTile(tile);

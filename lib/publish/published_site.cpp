@@ -13,6 +13,12 @@
 #include "publish/web_lighting.hpp"
 
 namespace relume {
+namespace {
+
+// The page's JPEG 2000 decoder (web/openjpeg/), needed only by fields with weight planes.
+const std::string decoder_folder = "openjpeg/";
+
+}  // namespace
 
 PublishReport publish_container(const std::filesystem::path& container,
                                 const std::filesystem::path& site, const PublishOptions& options) {
@@ -40,6 +46,7 @@ PublishReport publish_container(const std::filesystem::path& container,
   manifest["srgb_thresholds"] = srgb_thresholds_json();
   manifest["field_file"] = layout.field_file;
   manifest["tiles"] = layout.tiles;
+  if (!layout.weight_planes.is_null()) manifest["weight_planes"] = layout.weight_planes;
   manifest["environments"] = nlohmann::ordered_json::array();
   for (const WebEnvironment& environment : environments)
     manifest["environments"].push_back(environment.entry);
@@ -47,7 +54,6 @@ PublishReport publish_container(const std::filesystem::path& container,
 
   PublishReport report;
   report.container_bytes = std::filesystem::file_size(container);
-  report.weights_from_planes = !field.coded_weights.empty();
   report.residual_longest_row = layout.field["residual_longest_row"].get<int>();
   report.residual_entries = layout.field["residual_entries"].get<std::uint64_t>();
   report.manifest_bytes = manifest_text.size();
@@ -57,15 +63,20 @@ PublishReport publish_container(const std::filesystem::path& container,
       write_file_atomically(folder / path, bytes);
       report.files.push_back({path, bytes.size()});
     };
-    for (const auto& [name, text] : web_assets()) {
-      write(name, text);
-      report.page_bytes += text.size();
+    for (const auto& [name, bytes] : web_assets()) {
+      if (name.starts_with(decoder_folder) && layout.weight_planes.is_null()) continue;
+      write(name, bytes);
+      report.page_bytes += bytes.size();
     }
     write("manifest.json", manifest_text);
     for (const WebFile& file : layout.files) {
       write(file.path, file.bytes);
-      if (file.level < 0) {
+      if (file.level == field_file_level) {
         report.field_bytes += file.bytes.size();
+        continue;
+      }
+      if (file.level == weight_planes_level) {
+        report.weight_planes_bytes += file.bytes.size();
         continue;
       }
       if (report.level_bytes.size() <= std::size_t(file.level))

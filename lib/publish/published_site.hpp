@@ -1,8 +1,10 @@
 // `relume publish`: a folder that any static web server can serve, in which the page (web/)
 // relights a compressed field on the viewer's GPU with WebGL2. It holds the page's files, the
 // manifest (manifest.json: the title, the field's shape, the lighting entries, the tile pyramid
-// and the files' arrays), the field's files in the web layout (data/field.bin, data/tiles/:
-// publish/web_layout.hpp) and the environment maps (data/env/: publish/web_environment.hpp).
+// and the files' arrays), the field's files in the web layout (data/field.bin, data/tiles/, and
+// for a one-basis field data/weights.j2k: publish/web_layout.hpp) and the environment maps
+// (data/env/: publish/web_environment.hpp). The page's JPEG 2000 decoder (web/openjpeg/) goes
+// only into sites with data/weights.j2k.
 #pragma once
 
 #include <cstdint>
@@ -37,18 +39,20 @@ struct PublishReport {
   std::uint64_t container_bytes = 0;
   std::uint64_t page_bytes = 0;  // web/* files
   std::uint64_t manifest_bytes = 0;
-  std::uint64_t field_bytes = 0;           // data/field.bin
+  std::uint64_t field_bytes = 0;  // data/field.bin
+  // data/weights.j2k: the container's JPEG 2000 codestream of the weights (one-basis fields),
+  // which the page decodes; 0 when the tiles hold the weights.
+  std::uint64_t weight_planes_bytes = 0;
   std::vector<std::uint64_t> level_bytes;  // the tiles of each pyramid level
   std::uint64_t environment_bytes = 0;     // data/env/*.bin
   int residual_longest_row = 0;            // entries of the longest residual row kept
   std::uint64_t residual_entries = 0;
-  // The container's weights are JPEG 2000 planes (the one-basis model), which browsers do not
-  // decode: the tiles carry them decoded, at many times the container's bytes.
-  bool weights_from_planes = false;
   // What a browser fetches to show the whole field at full resolution: the page, the manifest,
-  // data/field.bin and the tiles of level 0 (a map adds its file when picked).
+  // data/field.bin, data/weights.j2k and the tiles of level 0 (a map adds its file when
+  // picked).
   std::uint64_t full_view_bytes() const {
-    return page_bytes + manifest_bytes + field_bytes + (level_bytes.empty() ? 0 : level_bytes[0]);
+    return page_bytes + manifest_bytes + field_bytes + weight_planes_bytes +
+           (level_bytes.empty() ? 0 : level_bytes[0]);
   }
 };
 

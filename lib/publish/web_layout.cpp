@@ -77,6 +77,7 @@ std::vector<std::int32_t> integers_per_row(const std::vector<float>& values,
 // What every tile stores, decided once for the field so that all tiles share the manifest's
 // types.
 struct TileTypes {
+  bool weights = true;  // false: the page takes them from data/weights.j2k
   bool quantized_weights = false, quantized_residual = false, dark = false, gains = false;
   std::string cluster_type, length_type, light_type;
 };
@@ -96,7 +97,7 @@ std::vector<BundleArray> tile_arrays(const CompressedField& part, const TileType
          raw_bytes(predict_weights(
              part, integers(part.weights.data(), weight_count, part.quantization.weight_step),
              all_terms))});
-  } else {
+  } else if (types.weights) {
     arrays.push_back(
         {"weights", "float32",
          raw_bytes(std::vector<float>(part.weights.data(), part.weights.data() + weight_count))});
@@ -142,8 +143,10 @@ WebLayout lay_out_for_web(const CompressedField& field, int residual_cap, int ti
     throw Error("the tile size must be at least 8 pixels, got " + std::to_string(tile_size));
 
   TileTypes types;
-  types.quantized_weights = multiples_of(field.weights.data(), std::size_t(field.weights.size()),
-                                         field.quantization.weight_step);
+  types.weights = field.coded_weights.empty();
+  types.quantized_weights =
+      types.weights && multiples_of(field.weights.data(), std::size_t(field.weights.size()),
+                                    field.quantization.weight_step);
   types.quantized_residual = multiples_of(
       field.residual.values.data(), field.residual.values.size(), field.quantization.residual_step);
   types.dark = !field.dark_pixels.empty();
@@ -192,7 +195,16 @@ WebLayout lay_out_for_web(const CompressedField& field, int residual_cap, int ti
   }
   if (types.dark) globals.push_back({"dark_model", "float32", raw_bytes(field.dark)});
   layout.field_file = {{"file", "data/field.bin"}, {"arrays", array_list(globals)}};
-  layout.files.push_back({"data/field.bin", bundle_file(globals), -1});
+  layout.files.push_back({"data/field.bin", bundle_file(globals), field_file_level});
+  if (!types.weights) {
+    const CodedWeights& coded = field.coded_weights;
+    layout.weight_planes = {{"file", "data/weights.j2k"},
+                            {"planes", field.channels * field.terms},
+                            {"step", coded.step}};
+    layout.files.push_back({"data/weights.j2k",
+                            std::string(coded.codestream.begin(), coded.codestream.end()),
+                            weight_planes_level});
+  }
 
   const FieldRegions regions(field);
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();

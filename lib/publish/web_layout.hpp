@@ -21,17 +21,24 @@
 //     stored_functions  uint8           bit f % 8 of byte f / 8: function f = pixel * channels +
 //                                       channel has a stored row; the n-th set bit is row n
 //     clusters          uint8 | uint16  per stored row
-//     weights           med16 | float32 stored rows x terms; med16: quantized weights (times
-//                                       weight_step) as the container stores them, the errors
-//                                       modulo 2^16 of the median edge detector's prediction
-//                                       from the left, upper and upper-left pixels' rows of the
-//                                       same channel (container/weight_prediction.hpp), in the tile
+//     weights           med16 | float32 (not with weight planes) stored rows x terms; med16:
+//                                       quantized weights (times weight_step) as the container
+//                                       stores them, the errors modulo 2^16 of the median edge
+//                                       detector's prediction from the left, upper and upper-left
+//                                       pixels' rows of the same channel
+//                                       (container/weight_prediction.hpp), in the tile
 //     residual_lengths  uint8..uint32   per stored row: entries kept (at most the cap)
 //     residual_lights   uint8 | uint16  the kept entries, row after row: light index
 //     residual_values   int16 | float32 the same: value (int16: times residual_step)
 //     dark_pixels       uint8           (fields with dark pixels) bit set over the tile's pixels
 //     dark_gains        int16           (fields with gains) per dark pixel and channel, times
 //                                       dark_gain_step
+//   data/weights.j2k                    (one-basis fields, whose container codes W as JPEG 2000
+//                                       planes: model/weight_planes.hpp) the container's
+//                                       codestream as it is; the page decodes it whole, once, with
+//                                       OpenJPEG built for WebAssembly (web/openjpeg/), and gives
+//                                       each tile its weights from the planes
+//                                       (web/weight_planes.js)
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -43,16 +50,22 @@ namespace relume {
 
 inline constexpr int default_tile_size = 256;
 
+inline constexpr int field_file_level = -1;     // WebFile::level of data/field.bin
+inline constexpr int weight_planes_level = -2;  // WebFile::level of data/weights.j2k
+
 struct WebFile {
   std::string path;  // relative to the site, e.g. "data/tiles/0/1_2.bin"
   std::string bytes;
-  int level = -1;  // the pyramid level of a tile; -1 for data/field.bin
+  int level = field_file_level;  // the pyramid level of a tile, or one of the two above
 };
 
 struct WebLayout {
   nlohmann::ordered_json field;  // the manifest's "field": sizes, transform, steps, residual kept
   nlohmann::ordered_json tiles;  // the manifest's "tiles": size, levels, file pattern, arrays
   nlohmann::ordered_json field_file;  // the manifest's "field_file": path and arrays
+  // The manifest's "weight_planes": path, planes and step of data/weights.j2k; null when the
+  // tiles hold the weights.
+  nlohmann::ordered_json weight_planes;
   std::vector<WebFile> files;
 };
 

@@ -7,8 +7,11 @@
 // relight`'s PNG of the same settings within one 8-bit code on at least 99.9% of the pixels. Two
 // containers: a masked one with quantized values, and an unmasked one in the Haar basis with
 // dark pixels and float values; two caps each, lights inside the captured cover and outside it
-// (lit from the rim), a lat-long map at two rotations. Without WebGL2 the page says so. The
-// tests skip, saying why, when Chromium is not installed.
+// (lit from the rim), a lat-long map at two rotations. A one-basis container (a rate target's)
+// is published with its JPEG 2000 codestream as it is, which the page decodes (OpenJPEG built
+// for WebAssembly): the same image, data files near the container's bytes, and a truncated
+// codestream named on the status line. Without WebGL2 the page says so. The browser tests skip,
+// saying why, when Chromium is not installed.
 #include <array>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -127,7 +130,7 @@ class PublishedPage : public CommandSuite {
     run_or_fail("compress '" + path("scene") + "' -o '" + path("haar.relume") +
                 "' --no-mask --transform haar --noise-floor 0.02 --clusters 4 --terms 3 "
                 "--residual 5 --weights-precision float32 --residual-precision float32");
-    // One basis (a rate target's model): weights stored as JPEG 2000 planes, decoded for the page.
+    // One basis (a rate target's model): weights stored as JPEG 2000 planes, decoded by the page.
     run_or_fail("compress '" + path("scene") + "' -o '" + path("one_basis.relume") +
                 "' --target-models one-basis --target-bytes 5000");
     run_or_fail("sky -o '" + path("sky.exr") + "' --width 64 --sun-radiance 200");
@@ -197,19 +200,50 @@ TEST_F(PublishedPage, HaarFieldWithDarkPixelsEqualsRelightAtTwoCaps) {
   for (int cap : {1, 5}) expect_page_equals_relight(chromium, "haar", "-0.4,0.2,0.9", cap, 0.5);
 }
 
-// The one-basis model relights as its container does, and publishing it says what its decoded
-// planes cost against the container (the page has no JPEG 2000 decoder).
-TEST_F(PublishedPage, OneBasisFieldEqualsRelightAndItsCostIsSaid) {
+// The bytes of the files under `folder`.
+std::uint64_t folder_bytes(const fs::path& folder) {
+  std::uint64_t bytes = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file()) bytes += entry.file_size();
+  return bytes;
+}
+
+// The one-basis model's site holds the container's codestream as it is (data/weights.j2k), tiles
+// without weights and the page's decoder; a full view's data files weigh about what the
+// container does, and the page relights as the container does. Clustered sites go without the
+// decoder.
+TEST_F(PublishedPage, OneBasisFieldShipsItsCodestreamAndEqualsRelight) {
   const CommandResult published = run_relume("publish '" + path("one_basis.relume") + "' -o '" +
                                              path("one_basis_site") + "' --tile-size 16");
   ASSERT_EQ(published.exit_code, 0) << published.output;
-  EXPECT_NE(published.output.find("weights are JPEG 2000 planes"), std::string::npos)
-      << published.output;
-  EXPECT_EQ(run_relume("publish '" + path("masked.relume") + "' -o '" + path("plain_site") + "'")
-                .output.find("JPEG 2000"),
-            std::string::npos);
+  EXPECT_THAT(published.output, ::testing::HasSubstr("the container's JPEG 2000 codestream"));
+  const fs::path site = path("one_basis_site");
+  const auto manifest = nlohmann::json::parse(std::ifstream(site / "manifest.json"));
+  EXPECT_EQ(manifest["weight_planes"]["file"], "data/weights.j2k");
+  EXPECT_EQ(manifest["weight_planes"]["planes"], 3 * manifest["field"]["terms"].get<int>());
+  for (const auto& array : manifest["tiles"]["arrays"]) EXPECT_NE(array["name"], "weights");
+  EXPECT_TRUE(fs::exists(site / "openjpeg" / "j2k_decode.wasm"));
+  EXPECT_FALSE(fs::exists(fs::path(path("masked_site")) / "openjpeg"));
+  const std::uint64_t container = fs::file_size(path("one_basis.relume"));
+  const std::uint64_t data = fs::file_size(site / "data" / "field.bin") +
+                             fs::file_size(site / "data" / "weights.j2k") +
+                             folder_bytes(site / "data" / "tiles" / "0");
+  EXPECT_LE(double(data), 1.1 * double(container))
+      << "a full view's data files weigh " << data << " bytes, the container " << container;
   REQUIRE_CHROMIUM(chromium);
   expect_page_equals_relight(chromium, "one_basis", "0.3,0.5,0.8", 0, 1.0);
+}
+
+TEST_F(PublishedPage, NamesATruncatedWeightCodestream) {
+  run_or_fail("publish '" + path("one_basis.relume") + "' -o '" + path("truncated_site") + "'");
+  const fs::path weights = fs::path(path("truncated_site")) / "data" / "weights.j2k";
+  fs::resize_file(weights, fs::file_size(weights) / 2);
+  REQUIRE_CHROMIUM(chromium);
+  StaticServer server(path("truncated_site"));
+  const PageImage page = open_page(chromium, server.url("index.html?workers=0"));
+  EXPECT_EQ(page.state, "error");
+  EXPECT_THAT(page.status,
+              ::testing::HasSubstr("data/weights.j2k: the JPEG 2000 codestream does not decode"));
 }
 
 TEST_F(PublishedPage, SaysSoWithoutWebGl2) {

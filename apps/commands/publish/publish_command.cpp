@@ -45,16 +45,15 @@ void run_publish(const PublishCommandOptions& options) {
       double(report.full_view_bytes()) / double(report.container_bytes),
       bytes(report.container_bytes), bytes(report.page_bytes), bytes(report.manifest_bytes),
       bytes(report.field_bytes), bytes(report.level_bytes.empty() ? 0 : report.level_bytes[0]));
+  if (report.weight_planes_bytes > 0)
+    say("  and weights %llu: the container's JPEG 2000 codestream as it is (data/weights.j2k; "
+        "the page decodes it with OpenJPEG built for WebAssembly, openjpeg/ in its bytes)",
+        bytes(report.weight_planes_bytes));
   say("  %zu coarser levels %llu bytes (fetched instead of level 0 when zoomed out), maps %llu "
       "bytes (each fetched when picked); residual up to %d entries per function (%llu entries)",
       report.level_bytes.empty() ? std::size_t(0) : report.level_bytes.size() - 1,
       bytes(upper_levels), bytes(report.environment_bytes), report.residual_longest_row,
       bytes(report.residual_entries));
-  if (report.weights_from_planes)
-    note(
-        "the container's weights are JPEG 2000 planes (a rate target's one-basis model), which "
-        "browsers do not decode: the tiles carry them decoded, %.0fx the container's bytes",
-        double(report.full_view_bytes()) / double(report.container_bytes));
   note("serve it with any static web server, e.g. python3 -m http.server -d %s",
        options.output.c_str());
 }
