@@ -49,23 +49,19 @@ std::size_t reassign(const WorkingRows& rows, ClusterModel& model, const Cluster
   AssignmentResult result =
       run_assignment(rows, model, candidates, options,
                      "compress: iteration " + std::to_string(record.iteration) + ", assigning");
-  record.objective = result.total_objective();
-  std::vector<std::int32_t> previous = std::move(model.assignment);
-  model.assignment = std::move(result.best);
-  model.weights = std::move(result.weights);
-  if (options.shared_pixel_clusters) {
-    const PixelClusterChange shared =
-        share_pixel_clusters(rows, model, [&](const CandidateLists& lists) {
+  if (options.shared_pixel_clusters)
+    record.split_pixels =
+        share_pixel_clusters(rows, result, [&](const CandidateLists& lists) {
           return run_assignment(rows, model, lists, options,
                                 "compress: iteration " + std::to_string(record.iteration) +
                                     ", one cluster per pixel");
-        });
-    record.split_pixels = shared.split_pixels;
-    record.objective += shared.objective_change;
-  }
+        }).split_pixels;
   trace.assignment_seconds += seconds_since(start);
   std::size_t changed = 0;
-  for (std::size_t r = 0; r < rows.rows(); ++r) changed += previous[r] != model.assignment[r];
+  for (std::size_t r = 0; r < rows.rows(); ++r) changed += result.best[r] != model.assignment[r];
+  model.assignment = std::move(result.best);
+  model.weights = std::move(result.weights);
+  record.objective = result.total_objective();
 
   start = Clock::now();
   record.size_rules = enforce_cluster_sizes(rows, model, options.sizes, options.candidates,

@@ -14,14 +14,15 @@ struct SplitPixel {
   std::vector<std::int32_t> clusters;
 };
 
-std::vector<SplitPixel> split_pixels(const WorkingRows& rows, const ClusterModel& model) {
+std::vector<SplitPixel> split_pixels(const WorkingRows& rows,
+                                     const std::vector<std::int32_t>& cluster) {
   std::vector<SplitPixel> split;
   const std::size_t count = rows.pixel.size();
   for (std::size_t first = 0, end = 0; first < count; first = end) {
     end = first + 1;
     while (end < count && rows.pixel[end] == rows.pixel[first]) ++end;
     SplitPixel pixel{first, end - first, {}};
-    for (std::size_t r = first; r < end; ++r) pixel.clusters.push_back(model.assignment[r]);
+    for (std::size_t r = first; r < end; ++r) pixel.clusters.push_back(cluster[r]);
     std::sort(pixel.clusters.begin(), pixel.clusters.end());
     pixel.clusters.erase(std::unique(pixel.clusters.begin(), pixel.clusters.end()),
                          pixel.clusters.end());
@@ -32,20 +33,22 @@ std::vector<SplitPixel> split_pixels(const WorkingRows& rows, const ClusterModel
 
 }  // namespace
 
-PixelClusterChange share_pixel_clusters(const WorkingRows& rows, ClusterModel& model,
+PixelClusterChange share_pixel_clusters(const WorkingRows& rows, AssignmentResult& assigned,
                                         const CandidateFits& fit) {
   PixelClusterChange change;
   if (rows.pixel.empty()) return change;
-  const std::vector<SplitPixel> split = split_pixels(rows, model);
+  const std::vector<SplitPixel> split = split_pixels(rows, assigned.best);
   change.split_pixels = split.size();
   if (split.empty()) return change;
   std::size_t passes = 0;
   for (const SplitPixel& pixel : split) passes = std::max(passes, pixel.clusters.size());
 
-  // The chosen slot of every split pixel and its cost so far (summed L1 residual x norm).
+  // The chosen slot of every split pixel, its cost so far (summed L1 residual x norm), and its
+  // rows' fits to that slot's cluster.
   std::vector<std::size_t> chosen(split.size(), 0);
   std::vector<double> cost(split.size(), HUGE_VAL);
-  std::vector<float> objective(rows.rows(), 0.0f), before(rows.rows(), 0.0f);
+  std::vector<float> objective(rows.rows(), 0.0f);
+  RowMatrixF weights(assigned.weights.rows(), assigned.weights.cols());
   // Pass s fits every split pixel's rows to its s-th cluster; a pass keeps the fits of the pixels
   // whose cost it lowers.
   for (std::size_t s = 0; s < passes; ++s) {
@@ -61,16 +64,14 @@ PixelClusterChange share_pixel_clusters(const WorkingRows& rows, ClusterModel& m
       const SplitPixel& pixel = split[g];
       if (s >= pixel.clusters.size()) continue;
       double sum = 0;
-      for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
+      for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r)
         sum += double(result.objective[r]) * rows.norms[r];
-        if (model.assignment[r] == pixel.clusters[s]) before[r] = result.objective[r];
-      }
       if (sum >= cost[g]) continue;
       cost[g] = sum;
       chosen[g] = s;
       for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
         objective[r] = result.objective[r];
-        model.weights.row(Eigen::Index(r)) = result.weights.row(Eigen::Index(r));
+        weights.row(Eigen::Index(r)) = result.weights.row(Eigen::Index(r));
       }
     }
   }
@@ -78,9 +79,10 @@ PixelClusterChange share_pixel_clusters(const WorkingRows& rows, ClusterModel& m
     const SplitPixel& pixel = split[g];
     const std::int32_t cluster = pixel.clusters[chosen[g]];
     for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
-      change.rows_moved += model.assignment[r] != cluster;
-      change.objective_change += double(objective[r]) - before[r];
-      model.assignment[r] = cluster;
+      change.rows_moved += assigned.best[r] != cluster;
+      assigned.best[r] = cluster;
+      assigned.objective[r] = objective[r];
+      assigned.weights.row(Eigen::Index(r)) = weights.row(Eigen::Index(r));
     }
   }
   return change;

@@ -22,12 +22,12 @@ using CandidateFits = std::function<AssignmentResult(const CandidateLists& candi
 struct PixelClusterChange {
   std::size_t split_pixels = 0;  // pixels whose channels were in more than one cluster
   std::size_t rows_moved = 0;    // rows that changed cluster
-  double objective_change = 0;   // in the unit-norm L1 objective the iterations report
 };
 
-// Moves the channels of every split pixel (rows.pixel; nothing when it is empty) into one
-// cluster, as above, refitting their weights. `model` holds the assignment and weights.
-PixelClusterChange share_pixel_clusters(const WorkingRows& rows, ClusterModel& model,
+// Moves the channels of every pixel that `assigned` splits (rows.pixel; nothing when it is empty)
+// into one cluster, as above: their best cluster, weights and L1 objective become those of
+// their fits to it (`fit` runs them against `assigned`'s rows and bases).
+PixelClusterChange share_pixel_clusters(const WorkingRows& rows, AssignmentResult& assigned,
                                         const CandidateFits& fit);
 
 }  // namespace relume

@@ -15,28 +15,31 @@
 namespace relume {
 namespace {
 
-// A random problem whose rows are taken three at a time as the channels of a pixel, assigned
-// to their best candidates (so some pixels are split), with norms that differ by channel.
-AssignmentProblem split_problem(std::uint64_t seed) {
-  AssignmentProblem problem = random_assignment_problem({1500, 8, 3, 48, 3, false, seed});
-  WorkingRows& rows = problem.rows;
+// A random problem whose rows are taken three at a time as the channels of a pixel, with norms
+// that differ by channel, and its rows assigned to their best candidates (some pixels split).
+struct SplitProblem {
+  AssignmentProblem problem;
+  AssignmentResult assigned;
+};
+
+SplitProblem split_problem(std::uint64_t seed) {
+  SplitProblem split{random_assignment_problem({1500, 8, 3, 48, 3, false, seed}), {}};
+  WorkingRows& rows = split.problem.rows;
   rows.pixel.resize(rows.rows());
   for (std::size_t r = 0; r < rows.rows(); ++r) {
     rows.pixel[r] = std::uint32_t(r / 3);
     rows.norms[r] = 1.0f + float(r % 3);
   }
-  const AssignmentResult best =
-      assign_to_best_cluster(rows, problem.model, problem.candidates, IrlsSettings{}, 2);
-  problem.model.assignment = best.best;
-  problem.model.weights = best.weights;
-  return problem;
+  split.assigned = assign_to_best_cluster(rows, split.problem.model, split.problem.candidates,
+                                          IrlsSettings{}, 2);
+  return split;
 }
 
-std::size_t split_pixels(const WorkingRows& rows, const ClusterModel& model) {
+std::size_t split_pixels(const std::vector<std::int32_t>& cluster) {
   std::size_t split = 0;
-  for (std::size_t r = 0; r < rows.rows(); r += 3)
-    split += std::set<std::int32_t>(model.assignment.begin() + std::ptrdiff_t(r),
-                                    model.assignment.begin() + std::ptrdiff_t(r + 3))
+  for (std::size_t r = 0; r < cluster.size(); r += 3)
+    split += std::set<std::int32_t>(cluster.begin() + std::ptrdiff_t(r),
+                                    cluster.begin() + std::ptrdiff_t(r + 3))
                  .size() > 1;
   return split;
 }
@@ -61,65 +64,69 @@ double pixel_cost(const AssignmentProblem& problem, std::size_t first, std::int3
 }
 
 TEST(PixelClusters, EverySplitPixelJoinsItsCheapestCluster) {
-  const AssignmentProblem before = split_problem(5);
-  const std::size_t split = split_pixels(before.rows, before.model);
+  const SplitProblem before = split_problem(5);
+  const AssignmentProblem& problem = before.problem;
+  const std::size_t split = split_pixels(before.assigned.best);
   ASSERT_GT(split, 50u) << "the test needs split pixels";
-  AssignmentProblem after = before;
-  const PixelClusterChange change = share_pixel_clusters(after.rows, after.model, cpu_fits(after));
+  AssignmentResult after = before.assigned;
+  const PixelClusterChange change = share_pixel_clusters(problem.rows, after, cpu_fits(problem));
   EXPECT_EQ(change.split_pixels, split);
   EXPECT_GT(change.rows_moved, 0u);
-  EXPECT_EQ(split_pixels(after.rows, after.model), 0u);
+  EXPECT_EQ(split_pixels(after.best), 0u);
+  const ClusterModel& model = problem.model;
   std::size_t checked = 0;
-  for (std::size_t r = 0; r < before.rows.rows(); r += 3) {
-    const std::set<std::int32_t> clusters(before.model.assignment.begin() + std::ptrdiff_t(r),
-                                          before.model.assignment.begin() + std::ptrdiff_t(r + 3));
-    const std::int32_t chosen = after.model.assignment[r];
+  for (std::size_t r = 0; r < problem.rows.rows(); r += 3) {
+    const std::set<std::int32_t> clusters(before.assigned.best.begin() + std::ptrdiff_t(r),
+                                          before.assigned.best.begin() + std::ptrdiff_t(r + 3));
+    const std::int32_t chosen = after.best[r];
     if (clusters.size() == 1) {
       EXPECT_EQ(chosen, *clusters.begin()) << "pixel " << r / 3 << " was not split";
-      for (int j = 0; j < after.model.terms; ++j)
-        EXPECT_EQ(after.model.weights(Eigen::Index(r), j),
-                  before.model.weights(Eigen::Index(r), j));
+      EXPECT_EQ(after.objective[r], before.assigned.objective[r]);
+      for (int j = 0; j < model.terms; ++j)
+        EXPECT_EQ(after.weights(Eigen::Index(r), j), before.assigned.weights(Eigen::Index(r), j));
       continue;
     }
     ASSERT_TRUE(clusters.count(chosen)) << "pixel " << r / 3;
-    const double cost = pixel_cost(after, r, chosen);
-    for (const std::int32_t k : clusters) EXPECT_LE(cost, pixel_cost(after, r, k) * (1 + 1e-6));
-    // The chosen cluster's weights are the rows' fits to it.
+    const double cost = pixel_cost(problem, r, chosen);
+    for (const std::int32_t k : clusters) EXPECT_LE(cost, pixel_cost(problem, r, k) * (1 + 1e-6));
+    // The chosen cluster's weights and objective are the rows' fits to it.
     FunctionFitScratch scratch;
     float weights[max_cluster_terms];
-    fit_function_l1(after.model.basis(chosen), after.model.terms, after.model.lights,
-                    after.rows.row(r), 1.0f, IrlsSettings{}, weights, scratch);
-    for (int j = 0; j < after.model.terms; ++j)
-      EXPECT_NEAR(after.model.weights(Eigen::Index(r), j), weights[j], 1e-5f);
+    const float objective =
+        fit_function_l1(model.basis(chosen), model.terms, model.lights, problem.rows.row(r), 1.0f,
+                        IrlsSettings{}, weights, scratch);
+    EXPECT_NEAR(after.objective[r], objective, 1e-6f);
+    for (int j = 0; j < model.terms; ++j)
+      EXPECT_NEAR(after.weights(Eigen::Index(r), j), weights[j], 1e-5f);
     ++checked;
   }
   EXPECT_EQ(checked, split);
 }
 
 TEST(PixelClusters, RowsWithoutPixelsAreLeftAlone) {
-  AssignmentProblem problem = split_problem(6);
-  problem.rows.pixel.clear();
-  const auto assignment = problem.model.assignment;
+  SplitProblem split = split_problem(6);
+  split.problem.rows.pixel.clear();
+  const std::vector<std::int32_t> best = split.assigned.best;
   const PixelClusterChange change =
-      share_pixel_clusters(problem.rows, problem.model, cpu_fits(problem));
+      share_pixel_clusters(split.problem.rows, split.assigned, cpu_fits(split.problem));
   EXPECT_EQ(change.split_pixels, 0u);
-  EXPECT_EQ(problem.model.assignment, assignment);
+  EXPECT_EQ(split.assigned.best, best);
 }
 
 TEST(PixelClusters, TheOpenClFitsChooseAsTheCpuPathDoes) {
-  AssignmentProblem cpu = split_problem(7);
-  AssignmentProblem opencl = cpu;
-  share_pixel_clusters(cpu.rows, cpu.model, cpu_fits(cpu));
+  SplitProblem split = split_problem(7);
+  const AssignmentProblem& problem = split.problem;
+  AssignmentResult cpu = split.assigned, opencl = split.assigned;
+  share_pixel_clusters(problem.rows, cpu, cpu_fits(problem));
   OpenClAssigner assigner("", IrlsSettings{});
-  share_pixel_clusters(opencl.rows, opencl.model, [&](const CandidateLists& lists) {
-    return assigner.assign(opencl.rows, opencl.model, lists);
+  share_pixel_clusters(problem.rows, opencl, [&](const CandidateLists& lists) {
+    return assigner.assign(problem.rows, problem.model, lists);
   });
-  EXPECT_EQ(split_pixels(opencl.rows, opencl.model), 0u);
+  EXPECT_EQ(split_pixels(opencl.best), 0u);
   std::size_t same = 0;
-  for (std::size_t r = 0; r < cpu.rows.rows(); ++r)
-    same += cpu.model.assignment[r] == opencl.model.assignment[r];
+  for (std::size_t r = 0; r < problem.rows.rows(); ++r) same += cpu.best[r] == opencl.best[r];
   // Different choices only where two clusters fit a pixel almost equally well.
-  EXPECT_GE(double(same) / double(cpu.rows.rows()), 0.99);
+  EXPECT_GE(double(same) / double(problem.rows.rows()), 0.99);
 }
 
 }  // namespace
