@@ -6,7 +6,8 @@ times GAIN, clipped to [0, 1], rounded to 8 bits, written as PNG under the image
 extension .png. filenames.txt lists those names; light_directions.txt is copied,
 light_intensities.txt is left out (the images are already divided by it), mask.png is copied
 unless --no-mask. The folder is written as OUTPUT_FOLDER.part and renamed when complete (an
-earlier OUTPUT_FOLDER replaced), so a failed or interrupted run leaves no folder that looks done. Uses NumPy and OpenImageIO's Python bindings only, none of relume's code.
+earlier OUTPUT_FOLDER replaced), so a failed or interrupted run leaves no folder that looks
+done. Uses NumPy and OpenImageIO's Python bindings only, none of relume's code.
 
 Usage: scripts/normalize_to_8bit.py INPUT_FOLDER OUTPUT_FOLDER [--gain 5.3396] [--no-mask]
 """

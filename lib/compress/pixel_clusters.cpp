@@ -8,25 +8,34 @@
 namespace relume {
 namespace {
 
-// A pixel's rows [first, first + count) and the distinct clusters they are in, ascending.
+// A pixel's rows [first, first + count), the distinct clusters they are in, ascending, and where
+// its rows' kept fits start in share_pixel_clusters' arrays.
 struct SplitPixel {
-  std::size_t first = 0, count = 0;
+  std::size_t first = 0, count = 0, kept = 0;
   std::vector<std::int32_t> clusters;
 };
 
+// The pixels whose rows `cluster` puts in more than one cluster.
 std::vector<SplitPixel> split_pixels(const WorkingRows& rows,
                                      const std::vector<std::int32_t>& cluster) {
   std::vector<SplitPixel> split;
   const std::size_t count = rows.pixel.size();
+  std::size_t kept = 0;
   for (std::size_t first = 0, end = 0; first < count; first = end) {
-    end = first + 1;
-    while (end < count && rows.pixel[end] == rows.pixel[first]) ++end;
-    SplitPixel pixel{first, end - first, {}};
-    for (std::size_t r = first; r < end; ++r) pixel.clusters.push_back(cluster[r]);
+    bool one_cluster = true;
+    for (end = first + 1; end < count && rows.pixel[end] == rows.pixel[first]; ++end)
+      one_cluster = one_cluster && cluster[end] == cluster[first];
+    if (one_cluster) continue;
+    SplitPixel pixel{
+        first,
+        end - first,
+        kept,
+        {cluster.begin() + std::ptrdiff_t(first), cluster.begin() + std::ptrdiff_t(end)}};
     std::sort(pixel.clusters.begin(), pixel.clusters.end());
     pixel.clusters.erase(std::unique(pixel.clusters.begin(), pixel.clusters.end()),
                          pixel.clusters.end());
-    if (pixel.clusters.size() > 1) split.push_back(std::move(pixel));
+    kept += pixel.count;
+    split.push_back(std::move(pixel));
   }
   return split;
 }
@@ -44,11 +53,12 @@ PixelClusterChange share_pixel_clusters(const WorkingRows& rows, AssignmentResul
   for (const SplitPixel& pixel : split) passes = std::max(passes, pixel.clusters.size());
 
   // The chosen slot of every split pixel, its cost so far (summed L1 residual x norm), and its
-  // rows' fits to that slot's cluster.
+  // rows' fits to that slot's cluster (from the pixel's `kept` on).
   std::vector<std::size_t> chosen(split.size(), 0);
   std::vector<double> cost(split.size(), HUGE_VAL);
-  std::vector<float> objective(rows.rows(), 0.0f);
-  RowMatrixF weights(assigned.weights.rows(), assigned.weights.cols());
+  const std::size_t kept_rows = split.back().kept + split.back().count;
+  std::vector<float> objective(kept_rows);
+  RowMatrixF weights(Eigen::Index(kept_rows), assigned.weights.cols());
   // Pass s fits every split pixel's rows to its s-th cluster; a pass keeps the fits of the pixels
   // whose cost it lowers.
   for (std::size_t s = 0; s < passes; ++s) {
@@ -69,20 +79,22 @@ PixelClusterChange share_pixel_clusters(const WorkingRows& rows, AssignmentResul
       if (sum >= cost[g]) continue;
       cost[g] = sum;
       chosen[g] = s;
-      for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
-        objective[r] = result.objective[r];
-        weights.row(Eigen::Index(r)) = result.weights.row(Eigen::Index(r));
+      for (std::size_t i = 0; i < pixel.count; ++i) {
+        objective[pixel.kept + i] = result.objective[pixel.first + i];
+        weights.row(Eigen::Index(pixel.kept + i)) =
+            result.weights.row(Eigen::Index(pixel.first + i));
       }
     }
   }
   for (std::size_t g = 0; g < split.size(); ++g) {
     const SplitPixel& pixel = split[g];
     const std::int32_t cluster = pixel.clusters[chosen[g]];
-    for (std::size_t r = pixel.first; r < pixel.first + pixel.count; ++r) {
+    for (std::size_t i = 0; i < pixel.count; ++i) {
+      const std::size_t r = pixel.first + i;
       change.rows_moved += assigned.best[r] != cluster;
       assigned.best[r] = cluster;
-      assigned.objective[r] = objective[r];
-      assigned.weights.row(Eigen::Index(r)) = weights.row(Eigen::Index(r));
+      assigned.objective[r] = objective[pixel.kept + i];
+      assigned.weights.row(Eigen::Index(r)) = weights.row(Eigen::Index(pixel.kept + i));
     }
   }
   return change;
