@@ -104,11 +104,15 @@ struct CurveChoice {
   bool met = false;
 };
 
-CurveChoice fit_bytes(RateCurve& curve, std::uint64_t bytes) {
+// The most entries whose container fits `bytes`. A point that fits keeps fewer entries than all
+// of them and so has at most their PSNR: when that does not beat `to_beat` (the best choice's),
+// no bisection is made and the curve's fewest-bytes point is the choice.
+CurveChoice fit_bytes(RateCurve& curve, std::uint64_t bytes, double to_beat) {
   const RatePoint none = curve.measure(0);
   if (none.bytes > bytes) return {none, false};
   const RatePoint all = curve.measure(curve.entries());
   if (all.bytes <= bytes) return {all, true};
+  if (all.psnr <= to_beat) return {none, true};
   const std::size_t fits = bisect(0, curve.entries(), [&](std::size_t n) {
                              return curve.measure(n).bytes > bytes;
                            }).first;
@@ -116,9 +120,13 @@ CurveChoice fit_bytes(RateCurve& curve, std::uint64_t bytes) {
   return {point, point.bytes <= bytes};
 }
 
-CurveChoice reach_psnr(RateCurve& curve, double psnr) {
+// The fewest entries whose PSNR reaches `psnr`. A point that reaches it keeps at least the curve's
+// fewest-bytes point's bytes: when they are not below `to_beat` (the best choice's), no
+// bisection is made.
+CurveChoice reach_psnr(RateCurve& curve, double psnr, std::uint64_t to_beat) {
   const RatePoint none = curve.measure(0);
   if (none.psnr >= psnr) return {none, true};
+  if (none.bytes >= to_beat) return {none, false};
   const RatePoint all = curve.measure(curve.entries());
   if (all.psnr < psnr) return {all, false};
   const std::size_t enough = bisect(0, curve.entries(), [&](std::size_t n) {
@@ -279,21 +287,60 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
         });
   // A pair of the grid cannot win with at least the terms and clusters of a pair whose smallest
   // container was already larger than the target's bytes, or than the fewest bytes that reached
-  // the target PSNR: more terms or clusters only add bytes. Such pairs are not factored.
+  // the target PSNR: more terms or clusters only add bytes. For a byte target, no pair can win
+  // once the error of what no pair stores row by row (the dark pixels, the same for every pair)
+  // leaves less PSNR than the best choice's. Such pairs are not factored.
   std::vector<std::pair<int, int>> too_large;
+  std::optional<double> unstored_ceiling;  // the PSNR with every stored row exact
+  bool none_can_win = false;
   nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
+  std::size_t skipped_as_larger = 0;
   const auto cannot_win = [&](int terms, int clusters) {
     const bool dominated =
         std::any_of(too_large.begin(), too_large.end(), [&](const std::pair<int, int>& pair) {
           return terms >= pair.first && clusters >= pair.second;
         });
-    if (dominated) skipped.push_back({{"terms", terms}, {"clusters", clusters}});
-    return dominated;
+    if (none_can_win || dominated)
+      skipped.push_back({{"terms", terms},
+                         {"clusters", clusters},
+                         {"why", none_can_win ? "the dark pixels' error alone leaves less PSNR "
+                                                "than the best choice"
+                                              : "a smaller pair's smallest container was "
+                                                "already too large"}});
+    skipped_as_larger += !none_can_win && dominated;
+    return none_can_win || dominated;
   };
   if (target.clustered)
     for_each_grid_candidate(
         field, options,
         [&](GridCandidate& grid) {
+          // For a byte target, the pair as factored (float, its full residual) is the most
+          // PSNR any way of storing it reaches: when that does not beat the best choice, its
+          // ways are not stored and measured.
+          if (target.bytes > 0 && best_choice && best_choice->met) {
+            if (!unstored_ceiling)
+              unstored_ceiling = psnr_8bit_of_unstored(field, grid.full, target.psnr_white,
+                                                       threads, target.region)
+                                     .masked;
+            none_can_win = *unstored_ceiling <= best_choice->point.psnr;
+            const double ceiling = psnr_8bit(field, grid.full, target.psnr_white,
+                                             all_residual_entries, threads, target.region)
+                                       .masked;
+            if (ceiling <= best_choice->point.psnr) {
+              tried.push_back({{"model", "clustered"},
+                               {"terms", grid.options.clustering.terms},
+                               {"clusters", grid.full.clusters},
+                               {"met", false},
+                               {"ceiling_psnr_8bit", ceiling},
+                               {"not_stored", "its full residual in float does not beat the best"}});
+              if (!options.clustering.quiet)
+                std::fprintf(stderr,
+                             "compress: rate target: %d terms, %d clusters: at most %.2f dB with "
+                             "its whole residual in float, not stored\n",
+                             grid.options.clustering.terms, grid.full.clusters, ceiling);
+              return;
+            }
+          }
           std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
           for (const StoredAs& way : ways) {
             CompressedField stored = grid.full;
@@ -316,8 +363,15 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
             if (target.parameters_json)
               planned.parameters_json = target.parameters_json(grid.options, grid.stats);
             RateCurve curve(field, stored, row_weight, planned, target, threads);
+            const bool met = best_choice && best_choice->met;
             const CurveChoice choice =
-                target.bytes > 0 ? fit_bytes(curve, target.bytes) : reach_psnr(curve, target.psnr);
+                target.bytes > 0
+                    ? fit_bytes(curve, target.bytes,
+                                met ? best_choice->point.psnr
+                                    : -std::numeric_limits<double>::infinity())
+                    : reach_psnr(curve, target.psnr,
+                                 met ? best_choice->point.bytes
+                                     : std::numeric_limits<std::uint64_t>::max());
             smallest = std::min(smallest, curve.points().front().bytes);  // no residual entry
             nlohmann::ordered_json points = nlohmann::ordered_json::array();
             for (const RatePoint& point : curve.points()) points.push_back(to_json(point));
@@ -356,11 +410,16 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
             too_large.emplace_back(grid.options.clustering.terms, grid.options.clustering.clusters);
         },
         cannot_win);
-  if (!options.clustering.quiet && !skipped.empty())
+  if (!options.clustering.quiet && skipped_as_larger > 0)
     std::fprintf(stderr,
                  "compress: rate target: %zu larger (terms, clusters) pairs not factored: a "
                  "smaller pair's smallest container was already too large\n",
-                 skipped.size());
+                 skipped_as_larger);
+  if (!options.clustering.quiet && none_can_win)
+    std::fprintf(stderr,
+                 "compress: rate target: the dark pixels' error alone leaves at most %.2f dB, "
+                 "%zu (terms, clusters) pairs not factored\n",
+                 *unstored_ceiling, skipped.size() - skipped_as_larger);
   nlohmann::ordered_json goal;
   if (target.bytes > 0)
     goal = {{"bytes", target.bytes},
@@ -377,18 +436,22 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
            ? "one basis for all functions, its weight planes coded as JPEG 2000 in the bytes "
              "left, at basis sizes found by hill climbing; then each (terms, clusters) pair "
              "factored once with its full residual (not the pairs at least as large as one whose "
-             "smallest container did not fit) and stored in each way tried (term and "
+             "smallest container did not fit, nor any once the dark pixels' error alone leaves "
+             "less PSNR than the best so far) and, unless that in float does not beat the best "
+             "so far, stored in each way tried (term and "
              "quantization budgets), the residual entries inside the region ranked by e^2 and "
-             "the most kept whose container fits (bisection); of all that fit, the highest 8-bit "
-             "PSNR over the region wins"
+             "the most kept whose container fits (bisection, not made when even the full "
+             "residual's PSNR does not beat the best so far); of all that fit, the highest "
+             "8-bit PSNR over the region wins"
            : "one basis for all functions, its weight planes coded as JPEG 2000 in the fewest "
              "bytes that reach the target (regula falsi on the bytes), at basis sizes found by "
              "hill climbing; then each (terms, clusters) pair factored once with its full "
              "residual (not the pairs at least as large as one whose smallest container was "
              "larger than the best that reached it) and stored in each way tried (term and "
              "quantization budgets), the residual entries inside the region ranked by e^2 and "
-             "the fewest kept whose 8-bit PSNR reaches the target (bisection); of all that "
-             "reach it, the smallest container wins"},
+             "the fewest kept whose 8-bit PSNR reaches the target (bisection, not made when "
+             "even no residual is not smaller than the best so far); of all that reach it, the "
+             "smallest container wins"},
       {"met", best_choice && best_choice->met},
       {"tried", tried},
       {"not_factored", skipped},

@@ -26,10 +26,9 @@ double psnr_of(const std::vector<double>& squared_error_per_light, double sample
   return 20 * std::log10(255.0) - 10 * std::log10(mse);
 }
 
-}  // namespace
-
-Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compressed, double white,
-                int residual_cap, unsigned threads, const std::vector<std::uint8_t>& mask) {
+Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& compressed,
+                   double white, int residual_cap, bool stored_rows_exact, unsigned threads,
+                   const std::vector<std::uint8_t>& mask) {
   if (!(white > 0) || !std::isfinite(white))
     throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
   check_residual_cap(residual_cap);
@@ -59,9 +58,12 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
     all[b].assign(lights, 0.0);
     inside[b].assign(lights, 0.0);
     for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
-      reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
-                           approx[worker].data());
       const float* exact = original.values.row(Eigen::Index(p)).data();
+      if (stored_rows_exact && row_of[p] >= 0)
+        std::copy(exact, exact + lights, approx[worker].begin());
+      else
+        reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
+                             approx[worker].data());
       const bool masked = inside_mask[p / std::size_t(compressed.channels)] != 0;
       inside_count[b] += masked;
       for (int i = 0; i < lights; ++i) {
@@ -81,6 +83,19 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
     inside_samples += double(inside_count[b]);
   }
   return {psnr_of(all_total, double(functions)), psnr_of(inside_total, inside_samples)};
+}
+
+}  // namespace
+
+Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compressed, double white,
+                int residual_cap, unsigned threads, const std::vector<std::uint8_t>& mask) {
+  return measure_psnr(original, compressed, white, residual_cap, false, threads, mask);
+}
+
+Psnr8 psnr_8bit_of_unstored(const ReflectanceField& original, const CompressedField& compressed,
+                            double white, unsigned threads,
+                            const std::vector<std::uint8_t>& mask) {
+  return measure_psnr(original, compressed, white, all_residual_entries, true, threads, mask);
 }
 
 }  // namespace relume

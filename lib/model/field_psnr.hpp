@@ -26,4 +26,11 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
                 double white = 1.0, int residual_cap = all_residual_entries, unsigned threads = 0,
                 const std::vector<std::uint8_t>& mask = {});
 
+// The same with every stored row taken as exact (its residual included): the error of what the
+// field does not store row by row (dark pixels, all-zero functions), the most PSNR that any model
+// with the field's dark pixels reaches.
+Psnr8 psnr_8bit_of_unstored(const ReflectanceField& original, const CompressedField& compressed,
+                            double white = 1.0, unsigned threads = 0,
+                            const std::vector<std::uint8_t>& mask = {});
+
 }  // namespace relume

@@ -10,6 +10,7 @@
 #include "compress/cluster_model.hpp"
 #include "compress/clustered_factorization.hpp"
 #include "compress/noise_model.hpp"
+#include "compress/rate_control.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "opencl/runtime.hpp"
 #include "relight/compressed_relight_reference.hpp"
@@ -224,6 +225,36 @@ TEST(DarkModel, InconsistentDarkSetsAreRefusedByName) {
   bad.mask[bad.dark_pixels[3]] = 0;
   EXPECT_THAT(error_message([&] { validate_compressed_field(bad, "f"); }),
               HasSubstr("lies outside the mask"));
+}
+
+// A byte target with room to code the background's noise: the one basis gets past the PSNR that
+// the dark pixels' error leaves any clustered pair, so only the first pair is factored (to learn
+// that error), and the clustered pairs alone under the same target indeed reach less.
+TEST(DarkModel, AByteTargetFactorsNoPairThatTheDarkPixelsKeepBehindTheOneBasis) {
+  const ReflectanceField field = disc_on_dark_background();
+  CompressionOptions options;
+  options.clustering.quiet = true;
+  RateTarget target;
+  target.bytes = 30000;  // of 46,080 as float32
+  target.region.assign(std::size_t(field.pixels()), 1);
+  CompressionStats stats;
+  const TargetSearch both =
+      compress_to_rate_target(field, options, target, ContainerOptions{}, nullptr, stats);
+  ASSERT_TRUE(both.explanation["met"].get<bool>()) << both.explanation.dump();
+  EXPECT_EQ(both.field.clusters, 1);
+  EXPECT_FALSE(both.field.coded_weights.empty());
+  std::size_t factored = 0, kept_behind = 0;
+  for (const auto& tried : both.explanation["tried"]) factored += tried["model"] == "clustered";
+  for (const auto& pair : both.explanation["not_factored"])
+    kept_behind += pair["why"].get<std::string>().find("dark pixels") != std::string::npos;
+  EXPECT_EQ(factored, 1u) << both.explanation.dump();
+  EXPECT_EQ(kept_behind, 8u) << both.explanation.dump();
+
+  target.one_basis = false;
+  const TargetSearch clustered =
+      compress_to_rate_target(field, options, target, ContainerOptions{}, nullptr, stats);
+  EXPECT_LT(clustered.explanation["chosen"]["point"]["psnr_8bit"].get<double>(),
+            both.explanation["chosen"]["point"]["psnr_8bit"].get<double>());
 }
 
 }  // namespace

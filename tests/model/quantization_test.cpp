@@ -14,6 +14,7 @@
 #include "model/compressed_field_checks.hpp"
 #include "model/field_psnr.hpp"
 #include "model/random_compressed_field.hpp"
+#include "model/reconstruct_field.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {
@@ -219,6 +220,37 @@ TEST(FieldPsnr, MatchesADirectComputationAndIsInfiniteWhenExact) {
   EXPECT_NEAR(psnr_8bit(shifted, field).whole_frame, 20 * std::log10(255.0) - 10 * std::log10(mse),
               1e-9);
   EXPECT_THAT(error_message([&] { psnr_8bit(exact, field, 0.0); }), HasSubstr("white level"));
+}
+
+// The PSNR of what the field does not store row by row: the stored rows' errors are left out,
+// the dark pixels' and unstored functions' counted, so it bounds the field's own PSNR.
+TEST(FieldPsnr, OfUnstoredCountsOnlyTheFunctionsWithoutStoredRows) {
+  RandomFieldShape shape;
+  shape.width = 12;
+  shape.height = 9;
+  shape.lights = 24;
+  shape.stored_fraction = 0.4;  // a fifth of the pixels store no channel: half of them go dark
+  CompressedField field = random_compressed_field(shape);
+  testing::add_dark_pixels(field);
+  ASSERT_FALSE(field.dark_pixels.empty());
+  const ReflectanceField exact = reconstruct_field(field);
+  ReflectanceField shifted = exact;
+  const std::vector<std::int64_t> row_of = stored_row_of_function(field);
+  double squared = 0;
+  for (Eigen::Index p = 0; p < shifted.values.rows(); ++p) {
+    // Stored functions three levels off at light 0, the others one level at light 1.
+    const bool stored = row_of[std::size_t(p)] >= 0;
+    const Eigen::Index light = stored ? 0 : 1;
+    const double level = std::round(std::clamp(exact.values(p, light) * 255.0, 0.0, 255.0));
+    const double target = level + (level >= 250 ? -1 : 1) * (stored ? 3 : 1);
+    shifted.values(p, light) = float(target / 255.0);
+    if (!stored) squared += (target - level) * (target - level);
+  }
+  ASSERT_GT(squared, 0);
+  const double mse = squared / double(shifted.values.rows()) / field.lights;
+  const double unstored = psnr_8bit_of_unstored(shifted, field).whole_frame;
+  EXPECT_NEAR(unstored, 20 * std::log10(255.0) - 10 * std::log10(mse), 1e-9);
+  EXPECT_LT(psnr_8bit(shifted, field).whole_frame, unstored - 1);
 }
 
 }  // namespace
