@@ -1,8 +1,8 @@
 # Writes a C++ source that holds every file under a folder matching the patterns, keyed by its
-# path relative to the folder (for example "index.html", "openjpeg/j2k_decode.wasm"), returned by
-# `const std::map<std::string, std::string>& FUNCTION()` declared in HEADER: the OpenCL kernels
+# path relative to the folder (for example "index.html", "openjpeg/j2k_decode.wasm.gz"), returned
+# by `const std::map<std::string, std::string>& FUNCTION()` declared in HEADER: the OpenCL kernels
 # (kernels/*.cl) and the published web page's assets (web/). Text files become raw strings;
-# WebAssembly files (*.wasm), whose bytes may be anything, arrays of bytes.
+# WebAssembly and gzip files (*.wasm, *.gz), whose bytes may be anything, arrays of bytes.
 # Run as: cmake -DDIR=... -DPATTERN=GLOB[,GLOB...] -DHEADER=... -DFUNCTION=... -DOUTPUT=...
 #         -P embed_folder.cmake
 string(REPLACE "," ";" patterns "${PATTERN}")
@@ -15,7 +15,7 @@ string(APPEND body "#include \"${HEADER}\"\n\nnamespace relume {\n\n")
 set(entries "")
 set(binary_count 0)
 foreach(name ${files})
-  if(name MATCHES "\\.wasm$")
+  if(name MATCHES "\\.(wasm|gz)$")
     file(READ "${DIR}/${name}" hex HEX)
     string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
     string(REPEAT "0x..," 16 row)

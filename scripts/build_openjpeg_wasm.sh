@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rebuilds the published page's JPEG 2000 decoder, web/openjpeg/j2k_decode.js and
-# j2k_decode.wasm (vendored in the repository: building relume and CI never need emscripten),
+# j2k_decode.wasm.gz (vendored in the repository: building relume and CI never need emscripten),
 # from Debian packages only:
 #   - OpenJPEG: Debian bookworm's source package openjpeg2 (2.5.0-2+deb12u3 when written, the
 #     release relume's own libopenjp2-7 comes from), with Debian's patches (dpkg-source -x applies
@@ -13,7 +13,9 @@
 # without threads, codec tools or third-party libraries, and linked with the wrapper
 # web/openjpeg/j2k_decode.c into an ES module (MODULARIZE + EXPORT_ES6, for the page and its
 # module Web Workers; web/weight_planes.js hands it the .wasm); the module's first lines say
-# which versions it was built from. With the same packages a rebuild writes the same bytes.
+# which versions it was built from. The .wasm is stored gzipped (gzip -9n: 208 kB -> 67 kB on the
+# wire from any server; the page inflates it with the browser's DecompressionStream). With the
+# same packages a rebuild writes the same bytes.
 # Usage: scripts/build_openjpeg_wasm.sh   (about 3 minutes on 2 cores; needs deb.debian.org, and
 # root or sudo only to install missing packages)
 set -euo pipefail
@@ -69,5 +71,6 @@ emcc -Os -I"$work/openjpeg/src/lib/openjp2" -I"$work/build/src/lib/openjp2" \
   -s FILESYSTEM=0 \
   -s EXPORTED_FUNCTIONS=_j2k_decode,_j2k_free_planes,_j2k_errors,_malloc,_free \
   -s EXPORTED_RUNTIME_METHODS=HEAPU8,HEAP16,HEAP32,UTF8ToString
-chmod 644 "$web/j2k_decode.wasm"
+gzip -9nf "$web/j2k_decode.wasm"
+chmod 644 "$web/j2k_decode.wasm.gz"
 ls -l "$web"

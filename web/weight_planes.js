@@ -1,7 +1,7 @@
 // weight_planes.js: the weights of a one-basis field (a rate target's model), which `relume
 // publish` writes as its container codes them: one JPEG 2000 codestream of channels x terms
 // signed 16-bit planes (data/weights.j2k; lib/model/weight_planes.hpp). Decodes it whole, once,
-// with OpenJPEG built for WebAssembly (openjpeg/j2k_decode.js and .wasm, loaded only by such
+// with OpenJPEG built for WebAssembly (openjpeg/j2k_decode.js and .wasm.gz, loaded only by such
 // sites), and gives each tile its stored rows' weights from the planes as relume's reader does
 // (set_weights_from_planes in lib/model/weight_planes.cpp): plane values float(sample x step);
 // with three channels the orthonormal colour transform undone in double precision, rounded to
@@ -10,7 +10,18 @@
 // every tile of every level.
 import { fetchOk, forEachSetBit } from './field_data.js';
 
-const decoderWasm = './openjpeg/j2k_decode.wasm';
+// Gzipped: a third of the bytes from any server. A server that declares .gz files as
+// Content-Encoding hands over the .wasm itself, which is taken as it is.
+const decoderWasm = './openjpeg/j2k_decode.wasm.gz';
+
+// The decoder's .wasm bytes from the fetched file: inflated where they are still gzip's.
+async function wasmBytes(response) {
+  const bytes = await response.arrayBuffer();
+  const head = new Uint8Array(bytes, 0, Math.min(2, bytes.byteLength));
+  if (head[0] !== 0x1f || head[1] !== 0x8b) return bytes;
+  const inflated = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('gzip'));
+  return new Response(inflated).arrayBuffer();
+}
 
 // transform[a][c]: component a's entry for channel c (lib/model/weight_planes.cpp).
 function colourTransform(channels) {
@@ -48,7 +59,7 @@ export class WeightPlanes {
     // matter and a failed fetch is named.
     const [bytes, wasmBinary, { default: createDecoder }] = await Promise.all([
       fetchOk(entry.file, base).then((response) => response.arrayBuffer()),
-      fetchOk(decoderWasm, import.meta.url).then((response) => response.arrayBuffer()),
+      fetchOk(decoderWasm, import.meta.url).then(wasmBytes),
       import('./openjpeg/j2k_decode.js'),
     ]);
     const decoder = await createDecoder({ wasmBinary });

@@ -222,7 +222,7 @@ TEST_F(PublishedPage, OneBasisFieldShipsItsCodestreamAndEqualsRelight) {
   EXPECT_EQ(manifest["weight_planes"]["file"], "data/weights.j2k");
   EXPECT_EQ(manifest["weight_planes"]["planes"], 3 * manifest["field"]["terms"].get<int>());
   for (const auto& array : manifest["tiles"]["arrays"]) EXPECT_NE(array["name"], "weights");
-  EXPECT_TRUE(fs::exists(site / "openjpeg" / "j2k_decode.wasm"));
+  EXPECT_TRUE(fs::exists(site / "openjpeg" / "j2k_decode.wasm.gz"));
   EXPECT_FALSE(fs::exists(fs::path(path("masked_site")) / "openjpeg"));
   const std::uint64_t container = fs::file_size(path("one_basis.relume"));
   const std::uint64_t data = fs::file_size(site / "data" / "field.bin") +
