@@ -1,6 +1,7 @@
 // Implementation of the weights' camera-domain planes (see weight_planes.hpp).
 #include "model/weight_planes.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <relume/error.hpp>
@@ -27,23 +28,37 @@ std::size_t plane_values(const CompressedField& field) {
          std::size_t(field.height);
 }
 
+// Stored rows are taken in blocks of this many, plane by plane within a block: a row's values go
+// to channels x terms planes far apart, so row by row every value touches another page.
+constexpr std::size_t row_block = 512;
+
+// Calls visit(plane, j, r, pixel, entry) for every plane (component a, term j) and every stored row
+// r in [first, last) whose channel has a non-zero entry in component a, rows ascending.
+template <typename Visit>
+void for_each_plane_value(const CompressedField& field, std::size_t first, std::size_t last,
+                          Visit&& visit) {
+  const int channels = field.channels, terms = field.terms;
+  for (int a = 0; a < channels; ++a)
+    for (int j = 0; j < terms; ++j)
+      for (std::size_t r = first; r < last; ++r) {
+        const std::uint32_t function = field.stored_function[r];
+        const double entry = transform_entry(channels, a, int(function % std::uint32_t(channels)));
+        if (entry != 0)
+          visit(std::size_t(a) * terms + j, j, r, function / std::uint32_t(channels), entry);
+      }
+}
+
 }  // namespace
 
 std::vector<float> weight_planes(const CompressedField& field) {
   const std::size_t area = std::size_t(field.width) * std::size_t(field.height);
-  const int channels = field.channels, terms = field.terms;
   std::vector<float> planes(plane_values(field), 0.0f);
-  for (std::size_t r = 0; r < field.stored_rows(); ++r) {
-    const std::size_t pixel = field.stored_function[r] / std::size_t(channels);
-    const int channel = int(field.stored_function[r] % std::size_t(channels));
-    for (int a = 0; a < channels; ++a) {
-      const double entry = transform_entry(channels, a, channel);
-      if (entry == 0) continue;
-      for (int j = 0; j < terms; ++j)
-        planes[(std::size_t(a) * terms + j) * area + pixel] +=
-            float(entry * field.weights(Eigen::Index(r), j));
-    }
-  }
+  for (std::size_t first = 0; first < field.stored_rows(); first += row_block)
+    for_each_plane_value(
+        field, first, std::min(field.stored_rows(), first + row_block),
+        [&](std::size_t plane, int j, std::size_t r, std::size_t pixel, double entry) {
+          planes[plane * area + pixel] += float(entry * field.weights(Eigen::Index(r), j));
+        });
   return planes;
 }
 
@@ -54,18 +69,22 @@ void set_weights_from_planes(CompressedField& field, const std::vector<float>& p
                 std::to_string(field.channels) + " channels and " + std::to_string(field.terms) +
                 " terms has " + std::to_string(plane_values(field)));
   const std::size_t area = std::size_t(field.width) * std::size_t(field.height);
-  const int channels = field.channels, terms = field.terms;
-  field.weights.setZero(Eigen::Index(field.stored_rows()), terms);
-  for (std::size_t r = 0; r < field.stored_rows(); ++r) {
-    const std::size_t pixel = field.stored_function[r] / std::size_t(channels);
-    const int channel = int(field.stored_function[r] % std::size_t(channels));
-    for (int j = 0; j < terms; ++j) {
-      double weight = 0;
-      for (int a = 0; a < channels; ++a)
-        weight += transform_entry(channels, a, channel) *
-                  double(planes[(std::size_t(a) * terms + j) * area + pixel]);
-      field.weights(Eigen::Index(r), j) = float(weight);
-    }
+  // Summed over the components in double, in component order, then rounded to float.
+  field.weights.resize(Eigen::Index(field.stored_rows()), field.terms);
+  std::vector<double> sums;
+  for (std::size_t first = 0; first < field.stored_rows(); first += row_block) {
+    const std::size_t last = std::min(field.stored_rows(), first + row_block);
+    sums.assign((last - first) * std::size_t(field.terms), 0.0);
+    for_each_plane_value(
+        field, first, last,
+        [&](std::size_t plane, int j, std::size_t r, std::size_t pixel, double entry) {
+          sums[(r - first) * std::size_t(field.terms) + std::size_t(j)] +=
+              entry * double(planes[plane * area + pixel]);
+        });
+    for (std::size_t r = first; r < last; ++r)
+      for (int j = 0; j < field.terms; ++j)
+        field.weights(Eigen::Index(r), j) =
+            float(sums[(r - first) * std::size_t(field.terms) + std::size_t(j)]);
   }
 }
 
