@@ -158,8 +158,9 @@ nlohmann::ordered_json to_json(const PlanesRatePoint& point) {
 }
 
 // The one-basis model fitted to the target at basis sizes chosen by hill climbing: from the
-// middle of global_basis_sizes, to the neighbouring size that does better until neither does
-// (the PSNR at given bytes rises with the size until the weights' bytes outweigh it). Each fit
+// middle of global_basis_sizes, to the neighbouring size that does better until none does (the
+// PSNR at given bytes rises with the size until the weights' bytes outweigh it), larger sizes
+// tried first. Each fit
 // is offered to `offer` with its options; sizes whose weight planes would not fit in memory are
 // not tried. `stats`: what the model's parameters record.
 void try_global_basis(
@@ -214,17 +215,17 @@ void try_global_basis(
   };
   std::size_t at = sizes.size() / 2;
   evaluate(at);  // also the only size of a field of 4 lights or fewer
-  for (;;) {
-    std::optional<std::size_t> next;
-    for (const std::size_t neighbour : {at - 1, at + 1}) {
-      if (neighbour >= sizes.size()) continue;  // at - 1 wraps below 0
-      const CurveChoice& here = done.at(at);
-      const CurveChoice& there = evaluate(neighbour);
-      if (better(there, here, target) && (!next || better(there, done.at(*next), target)))
-        next = neighbour;
+  // Upward first, while each step pays; downward only when the first step up did not pay: the
+  // curve has one peak, so once a larger size did better no smaller one can win.
+  for (const bool up : {true, false}) {
+    bool moved = false;
+    for (;;) {
+      const std::size_t neighbour = up ? at + 1 : at - 1;  // at - 1 wraps below 0
+      if (neighbour >= sizes.size() || !better(evaluate(neighbour), done.at(at), target)) break;
+      at = neighbour;
+      moved = true;
     }
-    if (!next) break;
-    at = *next;
+    if (moved) break;
   }
 }
 
