@@ -157,12 +157,34 @@ nlohmann::ordered_json to_json(const PlanesRatePoint& point) {
           {"psnr_8bit", point.psnr}};
 }
 
+// For a byte target: whether a factored pair reaches at most `best_psnr` as it is (float, its
+// whole residual), the most any way of storing it reaches; if so, `tried` and stderr say it.
+bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& grid,
+                            const RateTarget& target, double best_psnr, unsigned threads,
+                            bool quiet, nlohmann::ordered_json& tried) {
+  const double ceiling =
+      psnr_8bit(field, grid.full, target.psnr_white, all_residual_entries, threads, target.region)
+          .masked;
+  if (ceiling > best_psnr) return false;
+  tried.push_back({{"model", "clustered"},
+                   {"terms", grid.options.clustering.terms},
+                   {"clusters", grid.full.clusters},
+                   {"met", false},
+                   {"ceiling_psnr_8bit", ceiling},
+                   {"not_stored", "its full residual in float does not beat the best"}});
+  if (!quiet)
+    std::fprintf(stderr,
+                 "compress: rate target: %d terms, %d clusters: at most %.2f dB with its whole "
+                 "residual in float, not stored\n",
+                 grid.options.clustering.terms, grid.full.clusters, ceiling);
+  return true;
+}
+
 // The one-basis model fitted to the target at basis sizes chosen by hill climbing: from the
 // middle of global_basis_sizes, to the neighbouring size that does better until none does (the
 // PSNR at given bytes rises with the size until the weights' bytes outweigh it), larger sizes
-// tried first. Each fit
-// is offered to `offer` with its options; sizes whose weight planes would not fit in memory are
-// not tried. `stats`: what the model's parameters record.
+// tried first. Each fit is offered to `offer` with its options; sizes whose weight planes would
+// not fit in memory are not tried. `stats`: what the model's parameters record.
 void try_global_basis(
     const ReflectanceField& field, const CompressionOptions& options, const CompressionStats& stats,
     const RateTarget& target, const ContainerOptions& container, nlohmann::ordered_json& tried,
@@ -315,32 +337,17 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
     for_each_grid_candidate(
         field, options,
         [&](GridCandidate& grid) {
-          // For a byte target, the pair as factored (float, its full residual) is the most
-          // PSNR any way of storing it reaches: when that does not beat the best choice, its
-          // ways are not stored and measured.
+          // For a byte target, a pair that cannot beat the best choice as factored is not
+          // stored and measured in its ways.
           if (target.bytes > 0 && best_choice && best_choice->met) {
             if (!unstored_ceiling)
               unstored_ceiling = psnr_8bit_of_unstored(field, grid.full, target.psnr_white,
                                                        threads, target.region)
                                      .masked;
             none_can_win = *unstored_ceiling <= best_choice->point.psnr;
-            const double ceiling = psnr_8bit(field, grid.full, target.psnr_white,
-                                             all_residual_entries, threads, target.region)
-                                       .masked;
-            if (ceiling <= best_choice->point.psnr) {
-              tried.push_back({{"model", "clustered"},
-                               {"terms", grid.options.clustering.terms},
-                               {"clusters", grid.full.clusters},
-                               {"met", false},
-                               {"ceiling_psnr_8bit", ceiling},
-                               {"not_stored", "its full residual in float does not beat the best"}});
-              if (!options.clustering.quiet)
-                std::fprintf(stderr,
-                             "compress: rate target: %d terms, %d clusters: at most %.2f dB with "
-                             "its whole residual in float, not stored\n",
-                             grid.options.clustering.terms, grid.full.clusters, ceiling);
+            if (float_model_cannot_win(field, grid, target, best_choice->point.psnr, threads,
+                                       options.clustering.quiet, tried))
               return;
-            }
           }
           std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
           for (const StoredAs& way : ways) {
@@ -451,7 +458,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
              "larger than the best that reached it) and stored in each way tried (term and "
              "quantization budgets), the residual entries inside the region ranked by e^2 and "
              "the fewest kept whose 8-bit PSNR reaches the target (bisection, not made when "
-             "even no residual is not smaller than the best so far); of all that reach it, the "
+             "even no residual is as large as the best so far); of all that reach it, the "
              "smallest container wins"},
       {"met", best_choice && best_choice->met},
       {"tried", tried},
