@@ -33,19 +33,25 @@ std::size_t plane_values(const CompressedField& field) {
 constexpr std::size_t row_block = 512;
 
 // Calls visit(plane, j, r, pixel, entry) for every plane (component a, term j) and every stored row
-// r in [first, last) whose channel has a non-zero entry in component a, rows ascending.
+// r in [first, last) (at most row_block rows) whose channel has a non-zero entry in component a,
+// rows ascending.
 template <typename Visit>
 void for_each_plane_value(const CompressedField& field, std::size_t first, std::size_t last,
                           Visit&& visit) {
   const int channels = field.channels, terms = field.terms;
-  for (int a = 0; a < channels; ++a)
+  std::array<std::size_t, row_block> pixel;
+  std::array<double, row_block> entry;  // of each row's channel in component a
+  for (std::size_t r = first; r < last; ++r)
+    pixel[r - first] = field.stored_function[r] / std::uint32_t(channels);
+  for (int a = 0; a < channels; ++a) {
+    for (std::size_t r = first; r < last; ++r)
+      entry[r - first] =
+          transform_entry(channels, a, int(field.stored_function[r] % std::uint32_t(channels)));
     for (int j = 0; j < terms; ++j)
-      for (std::size_t r = first; r < last; ++r) {
-        const std::uint32_t function = field.stored_function[r];
-        const double entry = transform_entry(channels, a, int(function % std::uint32_t(channels)));
-        if (entry != 0)
-          visit(std::size_t(a) * terms + j, j, r, function / std::uint32_t(channels), entry);
-      }
+      for (std::size_t r = first; r < last; ++r)
+        if (entry[r - first] != 0)
+          visit(std::size_t(a) * terms + j, j, r, pixel[r - first], entry[r - first]);
+  }
 }
 
 }  // namespace
