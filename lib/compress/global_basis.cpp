@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <relume/error.hpp>
+#include <vector>
 
 #include "compress/leading_subspace.hpp"
+#include "core/parallel.hpp"
 
 namespace relume {
 namespace {
@@ -43,7 +45,7 @@ Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms
 }
 
 CompressedField global_basis_field(const ReflectanceField& field, const Eigen::MatrixXd& directions,
-                                   int terms) {
+                                   int terms, unsigned threads) {
   if (terms < 1 || terms > directions.rows() || directions.cols() != field.lights())
     throw Error("a global basis of " + std::to_string(terms) + " terms from " +
                 std::to_string(directions.rows()) + " directions of " +
@@ -66,19 +68,37 @@ CompressedField global_basis_field(const ReflectanceField& field, const Eigen::M
   out.stored_function = stored_functions(field);
   out.cluster.assign(out.stored_function.size(), 0);
   out.weights.resize(Eigen::Index(out.stored_function.size()), terms);
+  // Blocks of rows gathered and multiplied at once, the blocks spread over the threads.
   const Eigen::MatrixXf exact_t = directions.topRows(terms).transpose().cast<float>();
+  constexpr std::size_t block = 1024;
+  const std::size_t stored = out.stored_function.size();
+  // Each block's energy, and each term's energy in its weights, summed in block order.
+  const std::size_t blocks = (stored + block - 1) / block;
+  std::vector<double> block_energy(blocks, 0.0);
+  std::vector<Eigen::VectorXd> block_term_energy(blocks, Eigen::VectorXd::Zero(terms));
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned) {
+    const std::size_t first = b * block, count = std::min(block, stored - first);
+    RowMatrixF values(Eigen::Index(count), field.lights());
+    for (std::size_t r = 0; r < count; ++r) {
+      values.row(Eigen::Index(r)) = field.values.row(out.stored_function[first + r]);
+      block_energy[b] += double(values.row(Eigen::Index(r)).squaredNorm());
+    }
+    auto weights = out.weights.middleRows(Eigen::Index(first), Eigen::Index(count));
+    weights.noalias() = values * exact_t;
+    for (std::size_t r = 0; r < count; ++r)
+      block_term_energy[b] += weights.row(Eigen::Index(r)).cast<double>().cwiseAbs2().transpose();
+  });
   double field_energy = 0;
-  for (std::size_t r = 0; r < out.stored_function.size(); ++r) {
-    const auto values = field.values.row(out.stored_function[r]);
-    field_energy += double(values.squaredNorm());
-    out.weights.row(Eigen::Index(r)) = values * exact_t;
+  Eigen::VectorXd term_energy = Eigen::VectorXd::Zero(terms);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    field_energy += block_energy[b];
+    term_energy += block_term_energy[b];
   }
   // A basis error d in term j costs |W[:,j]|^2 |d|^2 in the light images. The steps are
   // allotted so each term's share is equal (reverse water-filling: step_j ~ 1 / |W[:,j]|) and
   // all of them together add `basis_error_share` to the error of truncating at `terms`; never
   // finer than 12 bits of the term's largest value (the whole basis, or a flat field).
   const double rows = double(std::max<std::size_t>(out.stored_function.size(), 1));
-  const Eigen::VectorXd term_energy = out.weights.cast<double>().colwise().squaredNorm();
   const double truncation = std::max(0.0, field_energy - term_energy.sum()) / (rows * out.lights);
   const double basis_error = basis_error_share * truncation;  // per light-image value
   ValueQuantization& quantization = out.quantization;

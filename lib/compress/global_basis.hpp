@@ -25,8 +25,9 @@ Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms
 
 // The field as the first `terms` rows of `directions` (global_basis_directions), quantized, and
 // each stored function's projection on the unquantized rows (the basis's quantization error is
-// the one budgeted above); W is float32 values until the container codes it.
+// the one budgeted above); W is float32 values until the container codes it. `threads`: 0 = one
+// per core.
 CompressedField global_basis_field(const ReflectanceField& field, const Eigen::MatrixXd& directions,
-                                   int terms);
+                                   int terms, unsigned threads = 0);
 
 }  // namespace relume

@@ -21,50 +21,65 @@ constexpr double psnr_tolerance = 0.05;
 // encode_jpeg2000_planes lands up to this factor under the bytes it is given.
 constexpr double coder_resolution = 1.01;
 
+// The one-basis field's points at one basis size: its weight planes quantized once, coded at each
+// size asked into one working field, and the point a fit keeps swapped into a second, so that a
+// point costs no copy of W.
 class PlanesCurve {
  public:
   PlanesCurve(const ReflectanceField& original, CompressedField base, const RateTarget& target,
               const ContainerOptions& container, unsigned threads, const PlanesPointHook& measured)
       : original_(original),
-        base_(std::move(base)),
         target_(target),
         container_(container),
         threads_(threads),
-        measured_(measured) {
+        measured_(measured),
+        quantized_(quantize_weight_planes(base)),
+        work_(std::move(base)) {
     // The container's bytes besides the codestream: those of a one-byte stand-in, less that byte.
-    CompressedField stand_in = base_;
-    stand_in.coded_weights = {{0}, 1.0f};
-    fixed_bytes_ = plan_container(stand_in, container_).file_bytes - 1;
+    work_.coded_weights = {{0}, 1.0f};
+    fixed_bytes_ = plan_container(work_, container_).file_bytes - 1;
   }
 
   std::uint64_t fixed_bytes() const { return fixed_bytes_; }
 
-  // The field with its planes coded in at most `plane_bytes`, measured.
+  // The field with its planes coded in at most `plane_bytes`, measured; keep() keeps it.
   // A safe point for SIGINT / SIGTERM before each coding (a few seconds each on a whole frame).
-  std::pair<CompressedField, PlanesRatePoint> measure(std::uint64_t plane_bytes) {
+  PlanesRatePoint measure(std::uint64_t plane_bytes) {
     throw_if_interrupted();
-    CompressedField field = base_;
-    code_weights_as_planes(field, plane_bytes, threads_);
+    code_quantized_planes(work_, quantized_, plane_bytes, threads_);
     PlanesRatePoint point;
-    point.plane_bytes = field.coded_weights.codestream.size();
-    const StoredMeasure stored = measure_stored(original_, field, target_, container_, threads_);
+    point.plane_bytes = work_.coded_weights.codestream.size();
+    const StoredMeasure stored = measure_stored(original_, work_, target_, container_, threads_);
     point.bytes = stored.bytes;
     point.error = stored.error;
     point.psnr = stored.psnr;
     points_.push_back(point);
     if (measured_) measured_(point);
-    return {std::move(field), point};
+    return point;
   }
+
+  // The field of the last point measured becomes the one take_best() gives.
+  void keep() {
+    if (kept_)
+      std::swap(work_, best_);
+    else
+      best_ = work_;
+    kept_ = true;
+  }
+
+  CompressedField take_best() { return std::move(best_); }
 
   const std::vector<PlanesRatePoint>& points() const { return points_; }
 
  private:
   const ReflectanceField& original_;
-  CompressedField base_;
   const RateTarget& target_;
   const ContainerOptions& container_;
   unsigned threads_;
   const PlanesPointHook& measured_;
+  QuantizedWeightPlanes quantized_;
+  CompressedField work_, best_;
+  bool kept_ = false;
   std::uint64_t fixed_bytes_ = 0;
   std::vector<PlanesRatePoint> points_;
 };
@@ -80,12 +95,15 @@ GlobalBasisFit fit_bytes(PlanesCurve& curve, std::uint64_t bytes, std::int64_t o
   std::int64_t plane_bytes = std::llround(aim) - std::int64_t(curve.fixed_bytes()) - overhead;
   for (int attempt = 0; attempt < 4; ++attempt) {
     plane_bytes = std::max<std::int64_t>(plane_bytes, min_plane_bytes);
-    auto [field, point] = curve.measure(std::uint64_t(plane_bytes));
+    const PlanesRatePoint point = curve.measure(std::uint64_t(plane_bytes));
     const bool met = point.bytes <= bytes;
     // The first point, a fit where there was none, or a larger fit.
     if (attempt == 0 || (met && (!fit.met || point.bytes > fit.point.bytes)) ||
-        (!met && !fit.met && point.bytes < fit.point.bytes))
-      fit = {std::move(field), point, met, {}, {}};
+        (!met && !fit.met && point.bytes < fit.point.bytes)) {
+      curve.keep();
+      fit.point = point;
+      fit.met = met;
+    }
     if ((met && double(point.bytes) >= enough_share * double(bytes)) ||
         (!met && plane_bytes == std::int64_t(min_plane_bytes)))
       break;
@@ -119,18 +137,22 @@ GlobalBasisFit reach_psnr(PlanesCurve& curve, double psnr, std::uint64_t raw_byt
   bool have_low = false, repeated = false;
   std::vector<PlanesRatePoint> seen;
   const auto try_bytes = [&](std::uint64_t plane_bytes) {
-    auto [field, point] = curve.measure(plane_bytes);
+    const PlanesRatePoint point = curve.measure(plane_bytes);
     repeated = std::any_of(seen.begin(), seen.end(), [&](const PlanesRatePoint& other) {
       return other.plane_bytes == point.plane_bytes;
     });
     seen.push_back(point);
+    const auto keep = [&](bool met) {
+      curve.keep();
+      fit.point = point;
+      fit.met = met;
+    };
     if (point.psnr >= psnr) {
-      if (!fit.met || point.plane_bytes < fit.point.plane_bytes)
-        fit = {std::move(field), point, true, {}, {}};
+      if (!fit.met || point.plane_bytes < fit.point.plane_bytes) keep(true);
     } else if (!have_low || point.plane_bytes > low.plane_bytes) {
       low = point;
       have_low = true;
-      if (!fit.met) fit = {std::move(field), point, false, {}, {}};
+      if (!fit.met) keep(false);
     }
   };
   const auto close_enough = [&] {
@@ -191,14 +213,15 @@ GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::Matr
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,
                                 const PlanesFitStart& start, const PlanesPointHook& measured) {
-  PlanesCurve curve(field, global_basis_field(field, directions, terms), target, container, threads,
-                    measured);
+  PlanesCurve curve(field, global_basis_field(field, directions, terms, threads), target, container,
+                    threads, measured);
   const std::uint64_t raw_bytes =
       2 * std::uint64_t(field.channels) * std::uint64_t(terms) * std::uint64_t(field.pixels());
   const double planes = double(field.channels) * terms;
   GlobalBasisFit fit = target.bytes > 0 ? fit_bytes(curve, target.bytes,
                                                     std::llround(start.overhead_per_plane * planes))
                                         : reach_psnr(curve, target.psnr, raw_bytes, start);
+  fit.field = curve.take_best();
   fit.points = curve.points();
   fit.learned.overhead_per_plane =
       (double(fit.point.bytes) - double(curve.fixed_bytes()) - double(fit.point.plane_bytes)) /

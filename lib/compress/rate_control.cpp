@@ -258,10 +258,10 @@ StoredMeasure measure_stored(const ReflectanceField& original, const CompressedF
                              unsigned threads) {
   StoredMeasure measure;
   measure.bytes = plan_container(field, container).file_bytes;
-  measure.error = relative_error(original, field, true, all_residual_entries, threads).mean;
-  measure.psnr =
-      psnr_8bit(original, field, target.psnr_white, all_residual_entries, threads, target.region)
-          .masked;
+  const PsnrAndError measured = psnr_8bit_and_error(original, field, target.psnr_white,
+                                                    all_residual_entries, threads, target.region);
+  measure.error = measured.error.mean;
+  measure.psnr = measured.psnr.masked;
   return measure;
 }
 

@@ -8,7 +8,23 @@
 #include <relume/compressed_field.hpp>
 #include <string>
 
+#include "container/jpeg2000_planes.hpp"
+
 namespace relume {
+
+// W's planes as integers of one step (the largest magnitude 32000 steps), what the codestream
+// codes. Throws Error when W holds a value that is not finite.
+struct QuantizedWeightPlanes {
+  IntegerPlanes planes;
+  float step = 0;
+};
+QuantizedWeightPlanes quantize_weight_planes(const CompressedField& field);
+
+// Codes `quantized` (quantize_weight_planes of `field`) in at most `max_bytes` bytes of
+// codestream, as code_weights_as_planes does: a rate search codes the same planes at several
+// sizes without quantizing them again.
+void code_quantized_planes(CompressedField& field, const QuantizedWeightPlanes& quantized,
+                           std::uint64_t max_bytes, unsigned threads);
 
 // Codes `field`'s W in at most `max_bytes` bytes of codestream (more only when no codestream of
 // its planes is that small, jpeg2000_planes.hpp): sets field.coded_weights and replaces W by

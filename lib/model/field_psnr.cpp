@@ -26,9 +26,11 @@ double psnr_of(const std::vector<double>& squared_error_per_light, double sample
   return 20 * std::log10(255.0) - 10 * std::log10(mse);
 }
 
+// The PSNR, and with `relative` also the Eq. 16 error over the compressed field's mask (as
+// relative_error(original, compressed, true, residual_cap) defines it), from one reconstruction.
 Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& compressed,
                    double white, int residual_cap, bool stored_rows_exact, unsigned threads,
-                   const std::vector<std::uint8_t>& mask) {
+                   const std::vector<std::uint8_t>& mask, RelativeError* relative = nullptr) {
   if (!(white > 0) || !std::isfinite(white))
     throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
   check_residual_cap(residual_cap);
@@ -51,6 +53,7 @@ Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& comp
   const std::size_t blocks = (functions + block - 1) / block;
   std::vector<std::vector<double>> all(blocks), inside(blocks);
   std::vector<std::size_t> inside_count(blocks, 0);
+  std::vector<RelativeError> relative_part(blocks);
   const unsigned workers = resolve_thread_count(threads);
   std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
   std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
@@ -64,13 +67,17 @@ Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& comp
       else
         reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
                              approx[worker].data());
-      const bool masked = inside_mask[p / std::size_t(compressed.channels)] != 0;
+      const std::size_t pixel = p / std::size_t(compressed.channels);
+      const bool masked = inside_mask[pixel] != 0;
       inside_count[b] += masked;
+      const float* approximate = approx[worker].data();
       for (int i = 0; i < lights; ++i) {
-        const double d = to_8bit(exact[i], scale) - to_8bit(approx[worker][i], scale);
+        const double d = to_8bit(exact[i], scale) - to_8bit(approximate[i], scale);
         all[b][i] += d * d;
         if (masked) inside[b][i] += d * d;
       }
+      if (relative && compressed.mask[pixel])
+        add_relative_error(relative_part[b], exact, approximate, lights);
     }
   });
   std::vector<double> all_total(lights, 0.0), inside_total(lights, 0.0);
@@ -82,6 +89,7 @@ Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& comp
     }
     inside_samples += double(inside_count[b]);
   }
+  if (relative) *relative = average_of(relative_part);
   return {psnr_of(all_total, double(functions)), psnr_of(inside_total, inside_samples)};
 }
 
@@ -92,9 +100,17 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
   return measure_psnr(original, compressed, white, residual_cap, false, threads, mask);
 }
 
+PsnrAndError psnr_8bit_and_error(const ReflectanceField& original,
+                                 const CompressedField& compressed, double white, int residual_cap,
+                                 unsigned threads, const std::vector<std::uint8_t>& mask) {
+  PsnrAndError result;
+  result.psnr =
+      measure_psnr(original, compressed, white, residual_cap, false, threads, mask, &result.error);
+  return result;
+}
+
 Psnr8 psnr_8bit_of_unstored(const ReflectanceField& original, const CompressedField& compressed,
-                            double white, unsigned threads,
-                            const std::vector<std::uint8_t>& mask) {
+                            double white, unsigned threads, const std::vector<std::uint8_t>& mask) {
   return measure_psnr(original, compressed, white, all_residual_entries, true, threads, mask);
 }
 

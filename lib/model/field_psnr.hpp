@@ -26,6 +26,18 @@ Psnr8 psnr_8bit(const ReflectanceField& original, const CompressedField& compres
                 double white = 1.0, int residual_cap = all_residual_entries, unsigned threads = 0,
                 const std::vector<std::uint8_t>& mask = {});
 
+// psnr_8bit and the Eq. 16 error over the compressed field's mask (relative_error(original,
+// compressed, true, residual_cap)) from one reconstruction of every function: a rate search
+// measures every point it tries both ways. The same checks and errors as psnr_8bit.
+struct PsnrAndError {
+  Psnr8 psnr;
+  RelativeError error;
+};
+PsnrAndError psnr_8bit_and_error(const ReflectanceField& original,
+                                 const CompressedField& compressed, double white = 1.0,
+                                 int residual_cap = all_residual_entries, unsigned threads = 0,
+                                 const std::vector<std::uint8_t>& mask = {});
+
 // The same with every stored row taken as exact (its residual included): the error of what the
 // field does not store row by row (dark pixels, all-zero functions), the most PSNR that any model
 // with the field's dark pixels reaches.

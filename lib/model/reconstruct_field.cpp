@@ -58,29 +58,10 @@ RelativeError average_relative_error(std::size_t count, int lights, unsigned thr
     FunctionScratch& rows = scratch[worker];
     RelativeError& part = partial[b];
     for (std::size_t item = b * block; item < std::min(count, (b + 1) * block); ++item) {
-      if (!fill(item, rows)) continue;
-      double energy = 0, error = 0;
-      for (int i = 0; i < lights; ++i) {
-        const double exact = rows.exact[i];
-        energy += exact * exact;
-        error += (exact - rows.approx[i]) * (exact - rows.approx[i]);
-      }
-      if (energy == 0) {
-        ++part.zero_energy_skipped;
-        continue;
-      }
-      part.mean += error / energy;
-      ++part.functions_averaged;
+      if (fill(item, rows)) add_relative_error(part, rows.exact.data(), rows.approx.data(), lights);
     }
   });
-  RelativeError total;
-  for (const RelativeError& part : partial) {
-    total.mean += part.mean;
-    total.functions_averaged += part.functions_averaged;
-    total.zero_energy_skipped += part.zero_energy_skipped;
-  }
-  if (total.functions_averaged > 0) total.mean /= double(total.functions_averaged);
-  return total;
+  return average_of(partial);
 }
 
 std::string shape_text(int width, int height, int channels, int lights) {
@@ -89,6 +70,32 @@ std::string shape_text(int width, int height, int channels, int lights) {
 }
 
 }  // namespace
+
+void add_relative_error(RelativeError& sum, const float* exact, const float* approx, int lights) {
+  double energy = 0, error = 0;
+  for (int i = 0; i < lights; ++i) {
+    const double value = exact[i];
+    energy += value * value;
+    error += (value - approx[i]) * (value - approx[i]);
+  }
+  if (energy == 0) {
+    ++sum.zero_energy_skipped;
+    return;
+  }
+  sum.mean += error / energy;
+  ++sum.functions_averaged;
+}
+
+RelativeError average_of(const std::vector<RelativeError>& sums) {
+  RelativeError total;
+  for (const RelativeError& part : sums) {
+    total.mean += part.mean;
+    total.functions_averaged += part.functions_averaged;
+    total.zero_energy_skipped += part.zero_energy_skipped;
+  }
+  if (total.functions_averaged > 0) total.mean /= double(total.functions_averaged);
+  return total;
+}
 
 void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
                           double* sum, float* out) {

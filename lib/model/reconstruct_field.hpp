@@ -30,6 +30,14 @@ constexpr std::int64_t dark_model_row(std::size_t dark_index, int channels, int 
 void reconstruct_function(const CompressedField& field, std::int64_t stored_row, int residual_cap,
                           double* sum, float* out);
 
+// Adds one function's Eq. 16 term |exact - approx|^2 / |exact|^2 (lights values each, summed in
+// double) to sum.mean and counts it, or counts it as skipped when its energy is zero.
+void add_relative_error(RelativeError& sum, const float* exact, const float* approx, int lights);
+
+// The Eq. 16 error of add_relative_error's sums (of blocks of functions, added in order): their
+// terms over their count.
+RelativeError average_of(const std::vector<RelativeError>& sums);
+
 // Stored row of every function, or unstored_row / dark_model_row(...) where it has none.
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
 

@@ -8,6 +8,7 @@
 // codestream (container/weight_plane_coding.hpp).
 #pragma once
 
+#include <cstdint>
 #include <relume/compressed_field.hpp>
 #include <vector>
 
@@ -20,5 +21,10 @@ std::vector<float> weight_planes(const CompressedField& field);
 // Sets every stored row's weights from `planes` (as weight_planes lays them out). Throws Error
 // when the planes do not have the field's size.
 void set_weights_from_planes(CompressedField& field, const std::vector<float>& planes);
+
+// The same from integer planes of one step: plane value i is float(samples[i] x step), as a
+// JPEG 2000 codestream of the planes decodes (container/weight_plane_coding.hpp).
+void set_weights_from_integer_planes(CompressedField& field,
+                                     const std::vector<std::int32_t>& samples, float step);
 
 }  // namespace relume

@@ -70,6 +70,17 @@ TEST(GlobalBasis, TheQuantizedBasisAddsAboutItsShareToTheTruncationError) {
   EXPECT_GT(largest_integer(field, 0), 4 * largest_integer(field, terms - 1));
 }
 
+// The projections run in blocks spread over the threads: the field is the same for any count.
+TEST(GlobalBasis, TheFieldIsTheSameForAnyThreadCount) {
+  const ReflectanceField original = sample_original();
+  const Eigen::MatrixXd directions = global_basis_directions(original, original.lights());
+  const CompressedField one = global_basis_field(original, directions, 9, 1);
+  const CompressedField two = global_basis_field(original, directions, 9, 2);
+  EXPECT_EQ(one.weights, two.weights);
+  EXPECT_EQ(one.bases, two.bases);
+  EXPECT_EQ(one.quantization.basis_scales, two.quantization.basis_scales);
+}
+
 TEST(GlobalBasis, TheWholeBasisKeepsTwelveBitsOfEachTerm) {
   const ReflectanceField original = sample_original();
   const Eigen::MatrixXd directions = global_basis_directions(original, original.lights());

@@ -125,6 +125,22 @@ TEST(WeightPlanes, TheColourTransformIsOrthonormalAndExactBothWays) {
   EXPECT_NEAR(planes[4 * area + 5], (before(15, 0) - before(16, 0)) / std::sqrt(2.0f), 1e-5);
 }
 
+// A rate search quantizes the planes once and codes them at several sizes: each size gives
+// the codestream and W that coding the field whole gives.
+TEST(WeightPlanes, PlanesQuantizedOnceCodeAsTheWholeFieldDoes) {
+  const CompressedField field = planes_field(3000);
+  const QuantizedWeightPlanes quantized = quantize_weight_planes(field);
+  for (const std::uint64_t bytes : {1200u, 2500u}) {
+    CompressedField whole = field, once = field;
+    code_weights_as_planes(whole, bytes, 1);
+    code_quantized_planes(once, quantized, bytes, 2);
+    EXPECT_EQ(once.coded_weights.codestream, whole.coded_weights.codestream);
+    EXPECT_EQ(once.coded_weights.step, whole.coded_weights.step);
+    EXPECT_EQ(once.weights, whole.weights);
+    EXPECT_NE(once.weights, field.weights);  // fewer bytes: other weights
+  }
+}
+
 TEST(WeightPlanes, CodedWeightsRoundTripThroughTheContainerBitForBit) {
   testing::TempDir dir;
   const CompressedField field = planes_field(3000);

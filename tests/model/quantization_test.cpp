@@ -222,6 +222,33 @@ TEST(FieldPsnr, MatchesADirectComputationAndIsInfiniteWhenExact) {
   EXPECT_THAT(error_message([&] { psnr_8bit(exact, field, 0.0); }), HasSubstr("white level"));
 }
 
+// A rate search measures each point once for both figures: the same PSNR as psnr_8bit and the
+// Eq. 16 error of relative_error over the mask (summed in other blocks: equal to rounding).
+TEST(FieldPsnr, AndTheErrorInOnePassAreTheTwoMeasures) {
+  RandomFieldShape shape;
+  shape.width = 70;  // 70 x 40 x 3 functions: blocks of 4096 functions of both measures
+  shape.height = 40;
+  shape.lights = 16;
+  shape.stored_fraction = 0.6;
+  CompressedField field = random_compressed_field(shape);
+  testing::add_dark_pixels(field);
+  ReflectanceField original = reconstruct_field(field);
+  for (Eigen::Index p = 0; p < original.values.rows(); ++p)
+    original.values(p, p % shape.lights) += 0.01f * float(p % 5);
+  std::vector<std::uint8_t> region(field.mask.size(), 1);
+  for (std::size_t pixel = 0; pixel < region.size(); pixel += 3) region[pixel] = 0;
+  const PsnrAndError both = psnr_8bit_and_error(original, field, 1.0, 3, 2, region);
+  const Psnr8 psnr = psnr_8bit(original, field, 1.0, 3, 1, region);
+  EXPECT_EQ(both.psnr.whole_frame, psnr.whole_frame);
+  EXPECT_EQ(both.psnr.masked, psnr.masked);
+  const RelativeError error = relative_error(original, field, true, 3, 1);
+  ASSERT_GT(error.mean, 0);
+  ASSERT_LT(error.functions_averaged + error.zero_energy_skipped, original.functions());  // masked
+  EXPECT_NEAR(both.error.mean, error.mean, 1e-12 * error.mean);
+  EXPECT_EQ(both.error.functions_averaged, error.functions_averaged);
+  EXPECT_EQ(both.error.zero_energy_skipped, error.zero_energy_skipped);
+}
+
 // The PSNR of what the field does not store row by row: the stored rows' errors are left out,
 // the dark pixels' and unstored functions' counted, so it bounds the field's own PSNR.
 TEST(FieldPsnr, OfUnstoredCountsOnlyTheFunctionsWithoutStoredRows) {
