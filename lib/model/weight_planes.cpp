@@ -69,19 +69,16 @@ std::vector<float> weight_planes(const CompressedField& field) {
   return planes;
 }
 
-namespace {
-
-// Sets every stored row's weights from `count` plane values, value(i) the i-th as weight_planes
-// lays them out; `what` names them in the error for a count that is not the field's.
-template <typename Value>
-void set_weights(CompressedField& field, std::size_t count, Value&& value, const char* what) {
-  if (count != plane_values(field))
-    throw Error(std::string(what) + " hold " + std::to_string(count) + " values, a " +
+void set_weights_from_integer_planes(CompressedField& field,
+                                     const std::vector<std::int32_t>& samples, float step) {
+  if (samples.size() != plane_values(field))
+    throw Error("the weight planes hold " + std::to_string(samples.size()) + " values, a " +
                 std::to_string(field.width) + "x" + std::to_string(field.height) + " field of " +
                 std::to_string(field.channels) + " channels and " + std::to_string(field.terms) +
                 " terms has " + std::to_string(plane_values(field)));
   const std::size_t area = std::size_t(field.width) * std::size_t(field.height);
-  // Summed over the components in double, in component order, then rounded to float.
+  // Each plane value is float(sample x step), as the codestream decodes; summed over the
+  // components in double, in component order, then rounded to float.
   field.weights.resize(Eigen::Index(field.stored_rows()), field.terms);
   std::vector<double> sums;
   for (std::size_t first = 0; first < field.stored_rows(); first += row_block) {
@@ -90,28 +87,14 @@ void set_weights(CompressedField& field, std::size_t count, Value&& value, const
     for_each_plane_value(
         field, first, last,
         [&](std::size_t plane, int j, std::size_t r, std::size_t pixel, double entry) {
-          sums[(r - first) * std::size_t(field.terms) + std::size_t(j)] +=
-              entry * double(value(plane * area + pixel));
+          const float value = float(double(samples[plane * area + pixel]) * step);
+          sums[(r - first) * std::size_t(field.terms) + std::size_t(j)] += entry * double(value);
         });
     for (std::size_t r = first; r < last; ++r)
       for (int j = 0; j < field.terms; ++j)
         field.weights(Eigen::Index(r), j) =
             float(sums[(r - first) * std::size_t(field.terms) + std::size_t(j)]);
   }
-}
-
-}  // namespace
-
-void set_weights_from_planes(CompressedField& field, const std::vector<float>& planes) {
-  set_weights(
-      field, planes.size(), [&](std::size_t i) { return planes[i]; }, "the weight planes");
-}
-
-void set_weights_from_integer_planes(CompressedField& field,
-                                     const std::vector<std::int32_t>& samples, float step) {
-  set_weights(
-      field, samples.size(), [&](std::size_t i) { return float(double(samples[i]) * step); },
-      "the integer weight planes");
 }
 
 }  // namespace relume

@@ -18,12 +18,10 @@ namespace relume {
 // a * terms + j - 1, each row-major.
 std::vector<float> weight_planes(const CompressedField& field);
 
-// Sets every stored row's weights from `planes` (as weight_planes lays them out). Throws Error
-// when the planes do not have the field's size.
-void set_weights_from_planes(CompressedField& field, const std::vector<float>& planes);
-
-// The same from integer planes of one step: plane value i is float(samples[i] x step), as a
-// JPEG 2000 codestream of the planes decodes (container/weight_plane_coding.hpp).
+// Sets every stored row's weights from integer planes of one step, laid out as weight_planes lays
+// them out: plane value i is float(samples[i] x step), as a JPEG 2000 codestream of the planes
+// decodes (container/weight_plane_coding.hpp). Throws Error when the planes do not have the
+// field's size.
 void set_weights_from_integer_planes(CompressedField& field,
                                      const std::vector<std::int32_t>& samples, float step);
 

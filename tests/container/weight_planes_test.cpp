@@ -117,8 +117,10 @@ TEST(WeightPlanes, TheColourTransformIsOrthonormalAndExactBothWays) {
   double weight_energy = before.cast<double>().squaredNorm(), plane_energy = 0;
   for (const float v : planes) plane_energy += double(v) * v;
   EXPECT_NEAR(plane_energy, weight_energy, 1e-5 * weight_energy);  // orthonormal
-  set_weights_from_planes(field, planes);
-  EXPECT_LT((field.weights - before).cwiseAbs().maxCoeff(), 1e-5f);
+  // Back from the planes as integers of one step: within a step of each weight.
+  const QuantizedWeightPlanes quantized = quantize_weight_planes(field);
+  set_weights_from_integer_planes(field, quantized.planes.samples, quantized.step);
+  EXPECT_LT((field.weights - before).cwiseAbs().maxCoeff(), quantized.step);
   // Luma is the channels' sum over sqrt(3): pixel 5, term 0.
   const std::size_t area = 20 * 16;
   EXPECT_NEAR(planes[5], (before(15, 0) + before(16, 0) + before(17, 0)) / std::sqrt(3.0f), 1e-5);
