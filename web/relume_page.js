@@ -88,6 +88,26 @@ async function main() {
   document.title = manifest.title;
   $('title').textContent = manifest.title;
   const state = readSettings(params, manifest);
+  const view = { x: 0, y: 0, scale: 1 };
+  const fit = () => {
+    view.scale = Math.min(canvas.width / field.width, canvas.height / field.height);
+    view.x = (field.width - canvas.width / view.scale) / 2;
+    view.y = (field.height - canvas.height / view.scale) / 2;
+  };
+  const resize = () => {
+    const ratio = window.devicePixelRatio || 1;
+    canvas.width = Math.max(1, Math.round(canvas.clientWidth * ratio));
+    canvas.height = Math.max(1, Math.round(canvas.clientHeight * ratio));
+  };
+  // The first view's tiles are asked for at once: they are fetched and decoded while the field's
+  // bases load and the shaders compile. Arrived tiles are drawn once the renderer is attached.
+  let tileArrived = null;
+  const pyramid = new TilePyramid(manifest, base, (...tile) => tileArrived(...tile),
+                                  (error) => fail('error', `Could not show the field: ${error.message}`),
+                                  params.get('workers') === '0' ? 0 : undefined);
+  resize();
+  fit();
+  pyramid.prefetch(pyramid.levelFor(view.scale), view, canvas.width, canvas.height);
   const { arrays: globals } = await fetchBundle(manifest.field_file.file, manifest.field_file.arrays, base);
   const scales = globals.basis_scales, lights = field.lights;
   const bases = scales ? Float32Array.from(globals.bases, (q, i) => Math.fround(q * scales[Math.floor(i / lights)]))
@@ -106,27 +126,14 @@ async function main() {
 
   let lightChanged = true, pending = false, frames = [], lastFrameMs = 0, firstImage = null;
   // A tile that arrives while the view stands still is drawn alone over the frame on screen.
-  const tileArrived = (level, column, row, tile) => {
+  tileArrived = (level, column, row, tile) => {
     if (pending || level !== pyramid.levelFor(view.scale)) return schedule();
     renderer.begin(canvas.width, canvas.height, view, state.residual, state.exposure, false);
     renderer.drawTile(tile, pyramid.levels[level].stride, column * pyramid.size, row * pyramid.size);
     noteFirstImage(pyramid.complete(level, view, canvas.width, canvas.height));
   };
-  const pyramid = new TilePyramid(manifest, renderer, base, tileArrived,
-                                  (error) => fail('error', `Could not show the field: ${error.message}`),
-                                  params.get('workers') === '0' ? 0 : undefined);
+  pyramid.attach(renderer);
   const bytesOnTheWire = () => pageBytes() + pyramid.bytes;
-  const view = { x: 0, y: 0, scale: 1 };
-  const fit = () => {
-    view.scale = Math.min(canvas.width / field.width, canvas.height / field.height);
-    view.x = (field.width - canvas.width / view.scale) / 2;
-    view.y = (field.height - canvas.height / view.scale) / 2;
-  };
-  const resize = () => {
-    const ratio = window.devicePixelRatio || 1;
-    canvas.width = Math.max(1, Math.round(canvas.clientWidth * ratio));
-    canvas.height = Math.max(1, Math.round(canvas.clientHeight * ratio));
-  };
   // Keeps field point (fx, fy) under canvas pixel (px, py) while the scale changes.
   const zoomAt = (factor, px, py) => {
     const fx = view.x + px / view.scale, fy = view.y + py / view.scale;

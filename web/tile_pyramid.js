@@ -1,18 +1,19 @@
 // tile_pyramid.js: the published field's tile pyramid (lib/publish/web_layout.hpp) on the page:
 // which level and tiles a view needs, fetching each tile once when first needed (decoded in Web
-// Workers, tile_decoder.js), and drawing a view with the tiles it has (a tile not yet arrived is
-// stood in for by a coarser one already here). Tiles far from the view are dropped when many are
-// held.
+// Workers, tile_decoder.js; the first view's tiles even before the renderer exists), and drawing
+// a view with the tiles it has (a tile not yet arrived is stood in for by a coarser one already
+// here). A tile becomes textures when first drawn. Tiles far from the view are dropped when many
+// are held.
 import { TileDecoder } from './tile_decoder.js';
 
 const heldTiles = 96;
 
 export class TilePyramid {
-  // onTile(level, column, row, tile) is called when a fetched tile is ready to draw;
-  // onError(error) when one fails. workers: TileDecoder's.
-  constructor(manifest, renderer, base, onTile, onError, workers) {
+  // onTile(level, column, row, tile) is called when a fetched tile is ready to draw (once a
+  // renderer is attached); onError(error) when one fails. workers: TileDecoder's.
+  constructor(manifest, base, onTile, onError, workers) {
     this.manifest = manifest;
-    this.renderer = renderer;
+    this.renderer = null;
     this.decoder = new TileDecoder(manifest, base, workers);
     this.onTile = onTile;
     this.onError = onError;
@@ -47,7 +48,7 @@ export class TilePyramid {
     const key = `${level}/${column}/${row}`;
     let entry = this.tiles.get(key);
     if (!entry) {
-      entry = { ready: false, tile: null, used: this.frame };
+      entry = { ready: false, data: null, tile: null, used: this.frame };
       const { width, height, stride } = this.levels[level];
       const file = this.manifest.tiles.file.replace('{level}', level).replace('{column}', column)
           .replace('{row}', row);
@@ -58,9 +59,9 @@ export class TilePyramid {
       });
       entry.promise = decoded.then(({ tile, bytes }) => {
         this.bytes += bytes;
-        entry.tile = this.renderer.uploadTile(tile);
+        entry.data = tile;
         entry.ready = true;
-        this.onTile(level, column, row, entry.tile);
+        if (this.renderer) this.onTile(level, column, row, this.textures(entry));
         return entry;
       });
       entry.promise.catch(this.onError);
@@ -68,6 +69,25 @@ export class TilePyramid {
     }
     entry.used = this.frame;
     return entry;
+  }
+
+  // The renderer that draws the tiles (RelightRenderer): tiles arrive before it when prefetched.
+  attach(renderer) {
+    this.renderer = renderer;
+  }
+
+  // Asks for the tiles of `level` that a canvas of width x height under `view` shows.
+  prefetch(level, view, width, height) {
+    for (const [c, r] of this.visible(level, view, width, height)) this.request(level, c, r);
+  }
+
+  // A ready entry's textures, uploaded on first use.
+  textures(entry) {
+    if (!entry.tile) {
+      entry.tile = this.renderer.uploadTile(entry.data);
+      entry.data = null;
+    }
+    return entry.tile;
   }
 
   // Resolves when every tile of `level` is here.
@@ -92,7 +112,7 @@ export class TilePyramid {
     for (const [c, r] of this.visible(level, view, width, height)) {
       const entry = this.request(level, c, r);
       if (entry.ready) {
-        this.renderer.drawTile(entry.tile, stride, c * this.size, r * this.size);
+        this.renderer.drawTile(this.textures(entry), stride, c * this.size, r * this.size);
         continue;
       }
       complete = false;
@@ -103,7 +123,7 @@ export class TilePyramid {
         const ancestor = this.tiles.get(`${up}/${Math.floor(clip.x0 / upSpan)}/${Math.floor(clip.y0 / upSpan)}`);
         if (ancestor && ancestor.ready) {
           ancestor.used = this.frame;
-          this.renderer.drawTile(ancestor.tile, this.levels[up].stride,
+          this.renderer.drawTile(this.textures(ancestor), this.levels[up].stride,
                                  Math.floor(clip.x0 / upSpan) * this.size,
                                  Math.floor(clip.y0 / upSpan) * this.size, clip);
           break;
@@ -119,7 +139,7 @@ export class TilePyramid {
     const old = [...this.tiles.entries()].filter(([, e]) => e.ready && e.used < this.frame)
         .sort((a, b) => a[1].used - b[1].used);
     for (const [key, entry] of old.slice(0, this.tiles.size - heldTiles)) {
-      this.renderer.deleteTile(entry.tile);
+      if (entry.tile) this.renderer.deleteTile(entry.tile);
       this.tiles.delete(key);
     }
   }
