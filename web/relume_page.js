@@ -266,8 +266,9 @@ async function main() {
     frames = frames.filter((t) => now - t < 1000);
     $('rate').textContent = $('continuous').checked
         ? `${frames.length} frames/s`
-        : `${lastFrameMs > 0 ? (1000 / lastFrameMs).toFixed(1) : '–'} frames/s (last frame ` +
-          `${lastFrameMs.toFixed(1)} ms)`;
+        : lastFrameMs > 0
+        ? `${(1000 / lastFrameMs).toFixed(1)} frames/s (last frame ${lastFrameMs.toFixed(1)} ms)`
+        : '– frames/s (no frame timed yet)';
   }, 500);
 
   // The whole field at full resolution off screen (level 0): its RGBA bytes, rows from the top.
