@@ -101,8 +101,7 @@ async function main() {
   };
   // The first view's tiles are asked for at once: they are fetched and decoded while the field's
   // bases load and the shaders compile. Arrived tiles are drawn once the renderer is attached.
-  let tileArrived = null;
-  const pyramid = new TilePyramid(manifest, base, (...tile) => tileArrived(...tile),
+  const pyramid = new TilePyramid(manifest, base,
                                   (error) => fail('error', `Could not show the field: ${error.message}`),
                                   params.get('workers') === '0' ? 0 : undefined);
   resize();
@@ -126,13 +125,13 @@ async function main() {
 
   let lightChanged = true, pending = false, frames = [], lastFrameMs = 0, firstImage = null;
   // A tile that arrives while the view stands still is drawn alone over the frame on screen.
-  tileArrived = (level, column, row, tile) => {
+  const tileArrived = (level, column, row, tile) => {
     if (pending || level !== pyramid.levelFor(view.scale)) return schedule();
     renderer.begin(canvas.width, canvas.height, view, state.residual, state.exposure, false);
     renderer.drawTile(tile, pyramid.levels[level].stride, column * pyramid.size, row * pyramid.size);
     noteFirstImage(pyramid.complete(level, view, canvas.width, canvas.height));
   };
-  pyramid.attach(renderer);
+  pyramid.attach(renderer, tileArrived);
   const bytesOnTheWire = () => pageBytes() + pyramid.bytes;
   // Keeps field point (fx, fy) under canvas pixel (px, py) while the scale changes.
   const zoomAt = (factor, px, py) => {

@@ -9,13 +9,12 @@ import { TileDecoder } from './tile_decoder.js';
 const heldTiles = 96;
 
 export class TilePyramid {
-  // onTile(level, column, row, tile) is called when a fetched tile is ready to draw (once a
-  // renderer is attached); onError(error) when one fails. workers: TileDecoder's.
-  constructor(manifest, base, onTile, onError, workers) {
+  // onError(error) is called when a tile fails. workers: TileDecoder's.
+  constructor(manifest, base, onError, workers) {
     this.manifest = manifest;
     this.renderer = null;
+    this.onTile = null;
     this.decoder = new TileDecoder(manifest, base, workers);
-    this.onTile = onTile;
     this.onError = onError;
     this.size = manifest.tiles.size;
     this.levels = manifest.tiles.levels;
@@ -71,9 +70,12 @@ export class TilePyramid {
     return entry;
   }
 
-  // The renderer that draws the tiles (RelightRenderer): tiles arrive before it when prefetched.
-  attach(renderer) {
+  // The renderer that draws the tiles (RelightRenderer), and onTile(level, column, row, tile),
+  // called from then on when a fetched tile is ready to draw (prefetched tiles may arrive before:
+  // the first draw takes them).
+  attach(renderer, onTile) {
     this.renderer = renderer;
+    this.onTile = onTile;
   }
 
   // Asks for the tiles of `level` that a canvas of width x height under `view` shows.
