@@ -41,10 +41,16 @@ void parallel_for(std::size_t count, unsigned threads,
   std::atomic<bool> failed{false};
   std::exception_ptr first_error;
   std::mutex error_mutex;
+  // Indices are taken in runs of `chunk`: one at a time while there are few (uneven work balances
+  // itself), about 64 runs per worker when there are many (per-pixel bodies, where taking each
+  // index from the shared counter would cost more than the body).
+  const std::size_t chunk = std::max<std::size_t>(1, count / (std::size_t(threads) * 64));
   auto work = [&](unsigned worker) {
-    for (std::size_t i = next++; i < count && !failed; i = next++) {
+    for (std::size_t first = next.fetch_add(chunk); first < count && !failed;
+         first = next.fetch_add(chunk)) {
+      const std::size_t last = std::min(count, first + chunk);
       try {
-        body(i, worker);
+        for (std::size_t i = first; i < last && !failed; ++i) body(i, worker);
       } catch (...) {
         std::lock_guard lock(error_mutex);
         if (!first_error) first_error = std::current_exception();
