@@ -157,26 +157,87 @@ nlohmann::ordered_json to_json(const PlanesRatePoint& point) {
           {"psnr_8bit", point.psnr}};
 }
 
-// For a byte target: whether a factored pair reaches at most `best_psnr` as it is (float, its
-// whole residual), the most any way of storing it reaches; if so, `tried` and stderr say it.
+// The weight of each stored row's residual entries in the ranking: 1 inside the target's region
+// (everywhere without one), 0 outside.
+std::vector<double> region_row_weights(const CompressedField& stored,
+                                       const std::vector<std::uint8_t>& region) {
+  std::vector<double> row_weight(stored.stored_rows(), 1.0);
+  if (!region.empty())
+    for (std::size_t r = 0; r < row_weight.size(); ++r) {
+      const std::uint64_t pixel = stored.stored_function[r] / std::uint64_t(stored.channels);
+      row_weight[r] = region[pixel] ? 1.0 : 0.0;
+    }
+  return row_weight;
+}
+
+// The fewest bytes a residual entry has cost in any container stored so far: over each curve, the
+// bytes its entries added per entry (its most and fewest entries measured), halved as a margin
+// for pairs whose residual codes more tightly; 0 before any curve measured two counts.
+class EntryCost {
+ public:
+  void add(const std::vector<RatePoint>& points) {
+    const auto [fewest, most] = std::minmax_element(
+        points.begin(), points.end(),
+        [](const RatePoint& a, const RatePoint& b) { return a.entries < b.entries; });
+    if (fewest == points.end() || most->entries <= fewest->entries) return;
+    const double per_entry =
+        (double(most->bytes) - double(fewest->bytes)) / double(most->entries - fewest->entries);
+    if (per_entry > 0 && (least_ == 0 || per_entry < least_)) least_ = per_entry;
+  }
+  // At most how many entries a container of `bytes` holds (all of them while nothing is known).
+  std::size_t most_entries(std::uint64_t bytes) const {
+    if (least_ == 0) return std::numeric_limits<std::size_t>::max();
+    return std::size_t(double(bytes) / (0.5 * least_));
+  }
+
+ private:
+  double least_ = 0;
+};
+
+// For a byte target: whether a factored pair reaches at most `best_psnr` as it is (float) with the
+// `most_entries` residual entries that gain the most inside the region (its whole residual when
+// it has no more), the most any way of storing it in the target's bytes reaches; if so, `tried`
+// and stderr say it.
 bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& grid,
-                            const RateTarget& target, double best_psnr, unsigned threads,
-                            bool quiet, nlohmann::ordered_json& tried) {
+                            const RateTarget& target, double best_psnr, std::size_t most_entries,
+                            unsigned threads, bool quiet, nlohmann::ordered_json& tried) {
+  const CompressedField* model = &grid.full;
+  CompressedField capped;
+  const std::size_t entries = grid.full.residual.nonzeros();
+  if (most_entries < entries) {
+    const std::vector<float> gains =
+        residual_gains(grid.full.residual, region_row_weights(grid.full, target.region));
+    std::vector<float> ranked = gains;
+    std::nth_element(ranked.begin(), ranked.begin() + std::ptrdiff_t(most_entries), ranked.end(),
+                     std::greater<float>());
+    capped = grid.full;
+    // Entries gaining exactly the cut's gain are all kept: never fewer than most_entries + 1.
+    keep_entries_with_gain(capped.residual, gains, ranked[most_entries]);
+    model = &capped;
+  }
   const double ceiling =
-      psnr_8bit(field, grid.full, target.psnr_white, all_residual_entries, threads, target.region)
+      psnr_8bit(field, *model, target.psnr_white, all_residual_entries, threads, target.region)
           .masked;
   if (ceiling > best_psnr) return false;
+  const bool whole = model == &grid.full;
   tried.push_back({{"model", "clustered"},
                    {"terms", grid.options.clustering.terms},
                    {"clusters", grid.full.clusters},
                    {"met", false},
                    {"ceiling_psnr_8bit", ceiling},
-                   {"not_stored", "its full residual in float does not beat the best"}});
+                   {"ceiling_residual_entries", model->residual.nonzeros()},
+                   {"not_stored", whole ? "its full residual in float does not beat the best"
+                                        : "in float, with the most residual entries the "
+                                          "target's bytes can hold, it does not beat the best"}});
   if (!quiet)
     std::fprintf(stderr,
-                 "compress: rate target: %d terms, %d clusters: at most %.2f dB with its whole "
-                 "residual in float, not stored\n",
-                 grid.options.clustering.terms, grid.full.clusters, ceiling);
+                 "compress: rate target: %d terms, %d clusters: at most %.2f dB with %s in "
+                 "float, not stored\n",
+                 grid.options.clustering.terms, grid.full.clusters, ceiling,
+                 whole ? "its whole residual"
+                       : (std::to_string(model->residual.nonzeros()) + " of its " +
+                          std::to_string(entries) + " residual entries")
+                             .c_str());
   return true;
 }
 
@@ -318,6 +379,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   bool none_can_win = false;
   nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
   std::size_t skipped_as_larger = 0;
+  EntryCost entry_cost;
   const auto cannot_win = [&](int terms, int clusters) {
     const bool dominated =
         std::any_of(too_large.begin(), too_large.end(), [&](const std::pair<int, int>& pair) {
@@ -345,7 +407,8 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
                                                        threads, target.region)
                                      .masked;
             none_can_win = *unstored_ceiling <= best_choice->point.psnr;
-            if (float_model_cannot_win(field, grid, target, best_choice->point.psnr, threads,
+            if (float_model_cannot_win(field, grid, target, best_choice->point.psnr,
+                                       entry_cost.most_entries(target.bytes), threads,
                                        options.clustering.quiet, tried))
               return;
           }
@@ -359,14 +422,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
               budget.relative_increase = way.quantization_budget;
               quantized = quantize_with_budget(field, stored, budget);
             }
-            // The weight of each stored row's entries in the ranking: inside the region or not.
-            std::vector<double> row_weight(stored.stored_rows(), 1.0);
-            if (!target.region.empty())
-              for (std::size_t r = 0; r < row_weight.size(); ++r) {
-                const std::uint64_t pixel =
-                    stored.stored_function[r] / std::uint64_t(stored.channels);
-                row_weight[r] = target.region[pixel] ? 1.0 : 0.0;
-              }
+            const std::vector<double> row_weight = region_row_weights(stored, target.region);
             ContainerOptions planned = container;
             if (target.parameters_json)
               planned.parameters_json = target.parameters_json(grid.options, grid.stats);
@@ -381,6 +437,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
                                  met ? best_choice->point.bytes
                                      : std::numeric_limits<std::uint64_t>::max());
             smallest = std::min(smallest, curve.points().front().bytes);  // no residual entry
+            entry_cost.add(curve.points());
             nlohmann::ordered_json points = nlohmann::ordered_json::array();
             for (const RatePoint& point : curve.points()) points.push_back(to_json(point));
             tried.push_back({{"model", "clustered"},
@@ -446,7 +503,9 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
              "factored once with its full residual (not the pairs at least as large as one whose "
              "smallest container did not fit, nor any once the dark pixels' error alone leaves "
              "less PSNR than the best so far) and, unless that in float does not beat the best "
-             "so far, stored in each way tried (term and "
+             "so far with its whole residual or with the most entries the target's bytes hold "
+             "(at half the fewest bytes an entry cost in the containers stored so far), stored "
+             "in each way tried (term and "
              "quantization budgets), the residual entries inside the region ranked by e^2 and "
              "the most kept whose container fits (bisection, not made when even the full "
              "residual's PSNR does not beat the best so far); of all that fit, the highest "

@@ -13,8 +13,9 @@
 // the target's bytes (or than the fewest bytes that reached the target PSNR) ends the pairs with
 // at least its terms and clusters, which are not factored; for a byte target, no pair is
 // factored once the dark pixels' error alone (model/field_psnr.hpp, psnr_8bit_of_unstored)
-// leaves less PSNR than the best choice, and a factored pair whose float model with its whole
-// residual does not beat it is not stored. Every rate-distortion point tried is
+// leaves less PSNR than the best choice, and a factored pair whose float model does not beat it,
+// with its whole residual or with the most entries the target's bytes can hold (at half the
+// fewest bytes an entry cost in the containers stored so far), is not stored. Every rate-distortion point tried is
 // in the explanation.
 #pragma once
 
