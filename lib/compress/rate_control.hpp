@@ -5,18 +5,18 @@
 // residual entries are ranked by the squared error each removes inside the PSNR region, and the
 // number kept is found by bisection: the most entries whose container fits the bytes, or the
 // fewest whose 8-bit PSNR reaches the target; no bisection where even the full residual's PSNR
-// (no residual's bytes) cannot beat the best choice so far. Of the ways that meet the target, the highest PSNR
-// (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the explanation says
-// so. Beside them, the one-basis model (global_basis.hpp), its weights coded as JPEG 2000 planes
-// fitted to the target (global_basis_rate.hpp), competes by the same rule, at basis sizes found
-// by hill climbing. It is weighed first: a pair whose smallest container is already larger than
-// the target's bytes (or than the fewest bytes that reached the target PSNR) ends the pairs with
-// at least its terms and clusters, which are not factored; for a byte target, no pair is
-// factored once the dark pixels' error alone (model/field_psnr.hpp, psnr_8bit_of_unstored)
-// leaves less PSNR than the best choice, and a factored pair whose float model does not beat it,
-// with its whole residual or with the most entries the target's bytes can hold (at half the
-// fewest bytes an entry cost in the containers stored so far), is not stored. Every rate-distortion point tried is
-// in the explanation.
+// (no residual's bytes) cannot beat the best choice so far. Of the ways that meet the target, the
+// highest PSNR (bytes) or the fewest bytes (PSNR) wins; when none does, the closest, and the
+// explanation says so. Beside them, the one-basis model (global_basis.hpp), its weights coded as
+// JPEG 2000 planes fitted to the target (global_basis_rate.hpp), competes by the same rule, at
+// basis sizes found by hill climbing. It is weighed first: a pair whose smallest container is
+// already larger than the target's bytes (or than the fewest bytes that reached the target PSNR)
+// ends the pairs with at least its terms and clusters, which are not factored; for a byte target,
+// no pair is factored once the dark pixels' error alone (model/field_psnr.hpp,
+// psnr_8bit_of_unstored) leaves less PSNR than the best choice, and a factored pair whose float
+// model does not beat it, with its whole residual or with the most entries the target's bytes can
+// hold (at half the fewest bytes an entry cost in the containers stored so far), is not stored.
+// Every rate-distortion point tried is in the explanation.
 #pragma once
 
 #include <cstdint>

@@ -1,9 +1,9 @@
 // A dynamic parallel loop over [0, count): worker threads take the next indices from an atomic
 // counter (one at a time when there are few, in runs when there are many), so uneven work (LP
-// solves, image decodes) balances itself. The first exception thrown by
-// any worker stops the loop and is rethrown on the calling thread. Starting threads fails soft:
-// when the system refuses a thread (a memory or process limit), the loop runs on the workers it
-// has, the calling thread at least.
+// solves, image decodes) balances itself. The first exception thrown by any worker stops the loop
+// and is rethrown on the calling thread. Starting threads fails soft: when the system refuses a
+// thread (a memory or process limit), the loop runs on the workers it has, the calling thread at
+// least.
 #pragma once
 
 #include <cstddef>
