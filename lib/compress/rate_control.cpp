@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <relume/error.hpp>
+#include <string>
 #include <utility>
 
 #include "compress/global_basis.hpp"
@@ -33,6 +34,14 @@ nlohmann::ordered_json to_json(const RatePoint& point) {
           {"psnr_8bit", point.psnr}};
 }
 
+// `field` keeping, of each residual row, the prefix of entries whose gain is at least `cut`.
+CompressedField with_entries_gaining(const CompressedField& field, const std::vector<float>& gains,
+                                     float cut) {
+  CompressedField kept = field;
+  keep_entries_with_gain(kept.residual, gains, cut);
+  return kept;
+}
+
 // One candidate's residual cut to any number of its best entries, measured as stored.
 class RateCurve {
  public:
@@ -52,11 +61,8 @@ class RateCurve {
   std::size_t entries() const { return sorted_.size(); }
 
   CompressedField at(std::size_t entries) const {
-    CompressedField field = stored_;
-    keep_entries_with_gain(
-        field.residual, gains_,
-        entries == 0 ? HUGE_VALF : sorted_[std::min(entries, sorted_.size()) - 1]);
-    return field;
+    return with_entries_gaining(
+        stored_, gains_, entries == 0 ? HUGE_VALF : sorted_[std::min(entries, sorted_.size()) - 1]);
   }
 
   // Each count is encoded and reconstructed once: the bisections ask for their ends again.
@@ -210,9 +216,8 @@ bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& 
     std::vector<float> ranked = gains;
     std::nth_element(ranked.begin(), ranked.begin() + std::ptrdiff_t(most_entries), ranked.end(),
                      std::greater<float>());
-    capped = grid.full;
     // Entries gaining exactly the cut's gain are all kept: never fewer than most_entries + 1.
-    keep_entries_with_gain(capped.residual, gains, ranked[most_entries]);
+    capped = with_entries_gaining(grid.full, gains, ranked[most_entries]);
     model = &capped;
   }
   const double ceiling =
@@ -220,6 +225,10 @@ bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& 
           .masked;
   if (ceiling > best_psnr) return false;
   const bool whole = model == &grid.full;
+  const std::string residual_used = whole
+                                        ? "its whole residual"
+                                        : std::to_string(model->residual.nonzeros()) + " of its " +
+                                              std::to_string(entries) + " residual entries";
   tried.push_back({{"model", "clustered"},
                    {"terms", grid.options.clustering.terms},
                    {"clusters", grid.full.clusters},
@@ -233,11 +242,7 @@ bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& 
     std::fprintf(stderr,
                  "compress: rate target: %d terms, %d clusters: at most %.2f dB with %s in "
                  "float, not stored\n",
-                 grid.options.clustering.terms, grid.full.clusters, ceiling,
-                 whole ? "its whole residual"
-                       : (std::to_string(model->residual.nonzeros()) + " of its " +
-                          std::to_string(entries) + " residual entries")
-                             .c_str());
+                 grid.options.clustering.terms, grid.full.clusters, ceiling, residual_used.c_str());
   return true;
 }
 
