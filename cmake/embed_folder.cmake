@@ -2,9 +2,11 @@
 # path relative to the folder (for example "index.html", "openjpeg/j2k_decode.wasm.gz"), returned
 # by `const std::map<std::string, std::string>& FUNCTION()` declared in HEADER: the OpenCL kernels
 # (kernels/*.cl) and the published web page's assets (web/). Text files become raw strings;
-# WebAssembly and gzip files (*.wasm, *.gz), whose bytes may be anything, arrays of bytes.
+# WebAssembly and gzip files (*.wasm, *.gz), whose bytes may be anything, arrays of bytes. With
+# -DMINIFIER=path/to/esbuild, JavaScript and CSS files are embedded minified (the published page
+# is served as it is embedded: its bytes are bytes on the wire).
 # Run as: cmake -DDIR=... -DPATTERN=GLOB[,GLOB...] -DHEADER=... -DFUNCTION=... -DOUTPUT=...
-#         -P embed_folder.cmake
+#         [-DMINIFIER=...] -P embed_folder.cmake
 string(REPLACE "," ";" patterns "${PATTERN}")
 list(TRANSFORM patterns PREPEND "${DIR}/")
 file(GLOB_RECURSE files RELATIVE "${DIR}" ${patterns})
@@ -26,7 +28,15 @@ foreach(name ${files})
                           "std::string(reinterpret_cast<const char*>(${array}), sizeof ${array})},\n")
     math(EXPR binary_count "${binary_count} + 1")
   else()
-    file(READ "${DIR}/${name}" text)
+    if(MINIFIER AND name MATCHES "\\.(js|css)$")
+      execute_process(COMMAND "${MINIFIER}" "${DIR}/${name}" --minify --log-level=error
+                      OUTPUT_VARIABLE text ERROR_VARIABLE problem RESULT_VARIABLE failed)
+      if(failed)
+        message(FATAL_ERROR "${MINIFIER} could not minify ${folder}/${name}:\n${problem}")
+      endif()
+    else()
+      file(READ "${DIR}/${name}" text)
+    endif()
     string(APPEND entries "    {\"${name}\", R\"relume_text(${text})relume_text\"},\n")
   endif()
 endforeach()

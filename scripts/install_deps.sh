@@ -11,7 +11,7 @@ packages=(
   pybind11-dev python3-dev python3-pytest python3-matplotlib
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev ffmpeg
   clang libclang-rt-14-dev locales-all
-  libcpp-httplib-dev chromium chromium-driver python3-selenium
+  libcpp-httplib-dev chromium chromium-driver python3-selenium esbuild
   libopenmpi-dev openmpi-bin
 )
 
