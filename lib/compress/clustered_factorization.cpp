@@ -112,20 +112,19 @@ std::string to_string(CompressionMethod method) {
   return method == CompressionMethod::cpca ? "cpca" : "l1";
 }
 
-CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
-                                       const ClusterModel& model, BasisTransform transform,
-                                       int residual_entries, float residual_threshold,
-                                       const std::vector<int>& entries_per_row,
-                                       CompressionStats& stats, unsigned threads) {
-  const int lights = field.lights(), terms = model.terms;
-  const std::size_t rows = prepared.functions.size();
+namespace {
+
+// What a compressed field of `prepared` holds whatever its model: its shape, mask, lights, stored
+// functions and dark model; `terms` and `clusters` say the model's size, which is not filled.
+CompressedField field_of_prepared_rows(const ReflectanceField& field, const PreparedRows& prepared,
+                                       BasisTransform transform, int terms, int clusters) {
   CompressedField out;
   out.width = field.width;
   out.height = field.height;
   out.channels = field.channels;
-  out.lights = lights;
+  out.lights = field.lights();
   out.terms = terms;
-  out.clusters = model.clusters;
+  out.clusters = clusters;
   out.transform = transform;
   out.mask = field.mask.empty() ? std::vector<std::uint8_t>(field.pixels(), 1) : field.mask;
   for (auto& inside : out.mask) inside = inside != 0;
@@ -137,6 +136,19 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   out.dark_gains = prepared.dark_gains;
   out.dark_gain_step = prepared.dark_gain_step;
   out.non_negative = (field.values.array() >= 0.0f).all();
+  return out;
+}
+
+}  // namespace
+
+CompressedField build_compressed_field(const ReflectanceField& field, const PreparedRows& prepared,
+                                       const ClusterModel& model, BasisTransform transform,
+                                       int residual_entries, float residual_threshold,
+                                       const std::vector<int>& entries_per_row,
+                                       CompressionStats& stats, unsigned threads) {
+  const int lights = field.lights(), terms = model.terms;
+  const std::size_t rows = prepared.functions.size();
+  CompressedField out = field_of_prepared_rows(field, prepared, transform, terms, model.clusters);
   out.cluster.assign(model.assignment.begin(), model.assignment.end());
   // The model fits the weighted rows R / S: F S is the basis of R (light_weighting.hpp).
   const std::vector<float>& light_scale = prepared.light_scale;
@@ -208,6 +220,15 @@ CompressedField build_compressed_field(const ReflectanceField& field, const Prep
   return out;
 }
 
+CompressedField zero_model_field(const ReflectanceField& field, const PreparedField& prepared,
+                                 BasisTransform transform) {
+  CompressedField out = field_of_prepared_rows(field, prepared.rows, transform, 0, 1);
+  out.cluster.assign(out.stored_function.size(), 0);
+  out.weights.resize(Eigen::Index(out.stored_function.size()), 0);
+  out.residual.row_offsets.assign(out.stored_function.size() + 1, 0);
+  return out;
+}
+
 ClusterModel cluster_prepared_rows(const WorkingRows& rows, int lights,
                                    const CompressionOptions& options, CompressionStats& stats,
                                    const IterationHook& hook, const ClusteringResume* resume) {
@@ -248,22 +269,40 @@ ClusterModel cluster_prepared_rows(const WorkingRows& rows, int lights,
   return model;
 }
 
+PreparedField prepare_field(const ReflectanceField& field, const CompressionOptions& options) {
+  validate_compression_options(options);
+  const auto start = Clock::now();
+  PreparedField prepared;
+  prepared.noise = options.noise_floor >= 0 ? noise_floor_model(field, options.noise_floor)
+                                            : estimate_noise(field, options.clustering.threads);
+  prepared.rows = prepare_rows(
+      field, options.transform == BasisTransform::haar, prepared.noise, options.clustering.threads,
+      options.light_weighting > 0 ? light_weighting_scales(field, options.light_weighting)
+                                  : std::vector<float>{});
+  prepared.seconds = seconds_since(start);
+  return prepared;
+}
+
 CompressedField compress_field(const ReflectanceField& field, const CompressionOptions& options,
                                CompressionStats& stats, const IterationHook& hook,
                                const ClusteringResume* resume) {
   validate_options(field, options);
+  return compress_prepared_field(field, prepare_field(field, options), options, stats, hook,
+                                 resume);
+}
+
+CompressedField compress_prepared_field(const ReflectanceField& field,
+                                        const PreparedField& prepared_field,
+                                        const CompressionOptions& options, CompressionStats& stats,
+                                        const IterationHook& hook, const ClusteringResume* resume) {
+  validate_options(field, options);
   const ClusteringOptions& clustering = options.clustering;
   const bool haar = options.transform == BasisTransform::haar;
-  auto start = Clock::now();
-  stats.noise = options.noise_floor >= 0 ? noise_floor_model(field, options.noise_floor)
-                                         : estimate_noise(field, clustering.threads);
+  const PreparedRows& prepared = prepared_field.rows;
+  stats.noise = prepared_field.noise;
   stats.residual_threshold = options.residual_threshold >= 0
                                  ? options.residual_threshold
                                  : default_residual_threshold(stats.noise, field);
-  const PreparedRows prepared = prepare_rows(
-      field, haar, stats.noise, clustering.threads,
-      options.light_weighting > 0 ? light_weighting_scales(field, options.light_weighting)
-                                  : std::vector<float>{});
   stats.functions = field.functions();
   stats.stored_rows = prepared.functions.size();
   stats.dark_pixels = prepared.dark_pixels.size();
@@ -273,9 +312,9 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
   stats.all_zero = stats.functions - stats.outside_mask - std::int64_t(stats.stored_rows) -
                    std::int64_t(stats.dark_pixels) * field.channels;
   stats.clusters_asked = clustering.clusters;
-  stats.prepare_seconds = seconds_since(start);
+  stats.prepare_seconds = prepared_field.seconds;
 
-  start = Clock::now();
+  auto start = Clock::now();
   ClusterModel model;
   if (options.multires_levels > 0 && !prepared.functions.empty() && !resume) {
     stats.multires.emplace();

@@ -116,6 +116,30 @@ CompressedField compress_field(const ReflectanceField& field, const CompressionO
                                CompressionStats& stats, const IterationHook& hook = {},
                                const ClusteringResume* resume = nullptr);
 
+// A field's rows as compress_field prepares them for clustering (its noise model, dark pixels and
+// light weighting by the options): the same for any terms, clusters and residual budget, so a
+// search over those prepares once (compress_prepared_field).
+struct PreparedField {
+  NoiseModel noise;
+  PreparedRows rows;
+  double seconds = 0;  // how long preparing took
+};
+PreparedField prepare_field(const ReflectanceField& field, const CompressionOptions& options);
+
+// compress_field with the rows `prepared` by prepare_field(field, O) for options O that differ
+// from `options` at most in terms, clusters and the residual budget.
+CompressedField compress_prepared_field(const ReflectanceField& field,
+                                        const PreparedField& prepared,
+                                        const CompressionOptions& options, CompressionStats& stats,
+                                        const IterationHook& hook = {},
+                                        const ClusteringResume* resume = nullptr);
+
+// The field of `prepared` with a model of no terms in one cluster and no residual: what every
+// (terms, clusters) pair stores alike, its stored functions, dark pixels and dark model. For
+// bounds on what no pair's model can change (psnr_8bit_of_unstored).
+CompressedField zero_model_field(const ReflectanceField& field, const PreparedField& prepared,
+                                 BasisTransform transform);
+
 // Builds the CompressedField of `field` from a finished clustering of its prepared rows: W and E
 // scaled back to the field's units, E cut by `residual_entries` (all rows alike) or by
 // `entries_per_row` when not empty. Fills the residual and sparseness fields of `stats`.

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <relume/error.hpp>
 
 namespace relume {
 
 void for_each_grid_candidate(const ReflectanceField& field, const CompressionOptions& options,
                              const std::function<void(GridCandidate&)>& visit,
-                             const std::function<bool(int terms, int clusters)>& skip) {
+                             const std::function<bool(int terms, int clusters)>& skip,
+                             const PreparedField* prepared) {
+  std::optional<PreparedField> own;  // prepared here at the first pair factored, when not given
   for (const int terms : {2, 4, 8}) {
     if (terms >= field.lights()) continue;
     for (const int clusters : {32, 64, 128}) {
@@ -20,7 +23,9 @@ void for_each_grid_candidate(const ReflectanceField& field, const CompressionOpt
       candidate.options.clustering.terms = terms;
       candidate.options.clustering.clusters = clusters;
       candidate.options.residual = ResidualBudget{0, 100.0};
-      candidate.full = compress_field(field, candidate.options, candidate.stats);
+      if (!prepared) prepared = &own.emplace(prepare_field(field, options));
+      candidate.full =
+          compress_prepared_field(field, *prepared, candidate.options, candidate.stats);
       candidate.energy.resize(candidate.full.stored_rows());
       for (std::size_t r = 0; r < candidate.energy.size(); ++r)
         candidate.energy[r] =

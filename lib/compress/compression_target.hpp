@@ -43,11 +43,13 @@ struct GridCandidate {
 };
 
 // Calls `visit` for every pair of terms {2, 4, 8} (below the light count) and clusters
-// {32, 64, 128}, in that order, each factored by compress_field with `options` otherwise; a pair
+// {32, 64, 128}, in that order, each factored as compress_field does with `options` otherwise,
+// from rows prepared once (`prepared`, from prepare_field(field, options), when given); a pair
 // for which `skip(terms, clusters)` (when given) is true is neither factored nor visited.
 void for_each_grid_candidate(const ReflectanceField& field, const CompressionOptions& options,
                              const std::function<void(GridCandidate&)>& visit,
-                             const std::function<bool(int terms, int clusters)>& skip = {});
+                             const std::function<bool(int terms, int clusters)>& skip = {},
+                             const PreparedField* prepared = nullptr);
 
 // Each residual entry's error reduction: value^2 times its row's weight (1 / ||R[p,:]||^2 for
 // Eq. 16, 1 inside a PSNR region and 0 outside it). Within a row the gains descend, as the

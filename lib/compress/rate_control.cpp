@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "compress/clustered_factorization.hpp"
 #include "compress/global_basis.hpp"
 #include "compress/global_basis_rate.hpp"
 #include "core/memory_budget.hpp"
@@ -349,9 +350,15 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   std::optional<CurveChoice> best_choice;
   StoredAs best_stored_as;
   nlohmann::ordered_json tried = nlohmann::ordered_json::array();
-  const std::vector<StoredAs> ways =
+  std::vector<StoredAs> ways =
       quantization ? target.stored_as : std::vector<StoredAs>{StoredAs{}};  // float: unused
   if (ways.empty()) throw Error("a rate target needs at least one way to store");
+  // The coarsest ways first: a way at least as fine in both budgets as one whose smallest
+  // container was too large stores more bytes and is not tried.
+  std::stable_sort(ways.begin(), ways.end(), [](const StoredAs& a, const StoredAs& b) {
+    return a.term_budget != b.term_budget ? a.term_budget > b.term_budget
+                                          : a.quantization_budget > b.quantization_budget;
+  });
   if (!target.clustered && !target.one_basis) throw Error("a rate target needs a model to weigh");
   // The one-basis model first: what it reaches tells the grid which pairs cannot win.
   CompressionOptions global_options = options;
@@ -385,6 +392,21 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
   std::size_t skipped_as_larger = 0;
   EntryCost entry_cost;
+  // The rows every pair is factored from, prepared once.
+  std::optional<PreparedField> prepared;
+  if (target.clustered) prepared = prepare_field(field, options);
+  // For a byte target whose best choice met it: whether the PSNR with every stored row exact (the
+  // dark pixels' error, what no pair's model changes) is no more than the best choice's.
+  const auto update_none_can_win = [&] {
+    if (target.bytes == 0 || !best_choice || !best_choice->met) return;
+    if (!unstored_ceiling)
+      unstored_ceiling =
+          psnr_8bit_of_unstored(field, zero_model_field(field, *prepared, options.transform),
+                                target.psnr_white, threads, target.region)
+              .masked;
+    none_can_win = *unstored_ceiling <= best_choice->point.psnr;
+  };
+  if (target.clustered) update_none_can_win();
   const auto cannot_win = [&](int terms, int clusters) {
     const bool dominated =
         std::any_of(too_large.begin(), too_large.end(), [&](const std::pair<int, int>& pair) {
@@ -406,19 +428,38 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
         [&](GridCandidate& grid) {
           // For a byte target, a pair that cannot beat the best choice as factored is not
           // stored and measured in its ways.
+          update_none_can_win();
           if (target.bytes > 0 && best_choice && best_choice->met) {
-            if (!unstored_ceiling)
-              unstored_ceiling = psnr_8bit_of_unstored(field, grid.full, target.psnr_white,
-                                                       threads, target.region)
-                                     .masked;
-            none_can_win = *unstored_ceiling <= best_choice->point.psnr;
             if (float_model_cannot_win(field, grid, target, best_choice->point.psnr,
                                        entry_cost.most_entries(target.bytes), threads,
                                        options.clustering.quiet, tried))
               return;
           }
+          const auto affordable = [&] {
+            return target.bytes > 0                  ? target.bytes
+                   : best_choice && best_choice->met ? best_choice->point.bytes
+                                                     : std::numeric_limits<std::uint64_t>::max();
+          };
           std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+          std::vector<StoredAs> too_large_ways;
+          std::size_t finer_ways_skipped = 0;
           for (const StoredAs& way : ways) {
+            if (std::any_of(too_large_ways.begin(), too_large_ways.end(), [&](const StoredAs& w) {
+                  return way.term_budget <= w.term_budget &&
+                         way.quantization_budget <= w.quantization_budget;
+                })) {
+              tried.push_back({{"model", "clustered"},
+                               {"terms", grid.options.clustering.terms},
+                               {"clusters", grid.full.clusters},
+                               {"term_budget", way.term_budget},
+                               {"quantization_budget", way.quantization_budget},
+                               {"met", false},
+                               {"not_stored",
+                                "a coarser way's smallest container was already "
+                                "too large"}});
+              ++finer_ways_skipped;
+              continue;
+            }
             CompressedField stored = grid.full;
             std::optional<QuantizationChoice> quantized;
             if (quantization) {
@@ -441,7 +482,8 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
                     : reach_psnr(curve, target.psnr,
                                  met ? best_choice->point.bytes
                                      : std::numeric_limits<std::uint64_t>::max());
-            smallest = std::min(smallest, curve.points().front().bytes);  // no residual entry
+            const std::uint64_t no_residual = curve.points().front().bytes;
+            smallest = std::min(smallest, no_residual);
             entry_cost.add(curve.points());
             nlohmann::ordered_json points = nlohmann::ordered_json::array();
             for (const RatePoint& point : curve.points()) points.push_back(to_json(point));
@@ -471,15 +513,18 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
               stats = grid.stats;
               stats.residual_nonzeros = best.field.residual.nonzeros();
             }
+            if (no_residual > affordable()) too_large_ways.push_back(way);
           }
-          const std::uint64_t affordable = target.bytes > 0 ? target.bytes
-                                           : best_choice && best_choice->met
-                                               ? best_choice->point.bytes
-                                               : std::numeric_limits<std::uint64_t>::max();
-          if (smallest > affordable)
+          if (!options.clustering.quiet && finer_ways_skipped > 0)
+            std::fprintf(stderr,
+                         "compress: rate target: %d terms, %d clusters: %zu finer ways not "
+                         "stored, a coarser way's smallest container was already too large\n",
+                         grid.options.clustering.terms, grid.full.clusters, finer_ways_skipped);
+          if (smallest > affordable())
             too_large.emplace_back(grid.options.clustering.terms, grid.options.clustering.clusters);
         },
-        cannot_win);
+        cannot_win, prepared ? &*prepared : nullptr);
+  prepared.reset();
   if (!options.clustering.quiet && skipped_as_larger > 0)
     std::fprintf(stderr,
                  "compress: rate target: %zu larger (terms, clusters) pairs not factored: a "
@@ -510,9 +555,10 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
              "less PSNR than the best so far) and, unless that in float does not beat the best "
              "so far with its whole residual or with the most entries the target's bytes hold "
              "(at half the fewest bytes an entry cost in the containers stored so far), stored "
-             "in each way tried (term and "
-             "quantization budgets), the residual entries inside the region ranked by e^2 and "
-             "the most kept whose container fits (bisection, not made when even the full "
+             "in each way tried (term and quantization budgets, the coarsest first, not the ways "
+             "at least as fine as one whose smallest container did not fit), the residual "
+             "entries inside the region ranked by e^2 and the most kept whose container fits "
+             "(bisection, not made when even the full "
              "residual's PSNR does not beat the best so far); of all that fit, the highest "
              "8-bit PSNR over the region wins"
            : "one basis for all functions, its weight planes coded as JPEG 2000 in the fewest "
@@ -520,8 +566,10 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
              "hill climbing; then each (terms, clusters) pair factored once with its full "
              "residual (not the pairs at least as large as one whose smallest container was "
              "larger than the best that reached it) and stored in each way tried (term and "
-             "quantization budgets), the residual entries inside the region ranked by e^2 and "
-             "the fewest kept whose 8-bit PSNR reaches the target (bisection, not made when "
+             "quantization budgets, the coarsest first, not the ways at least as fine as one "
+             "whose smallest container was larger than the best that reached it), the residual "
+             "entries inside the region ranked by e^2 and the fewest kept whose 8-bit PSNR reaches "
+             "the target (bisection, not made when "
              "even no residual is as large as the best so far); of all that reach it, the "
              "smallest container wins"},
       {"met", best_choice && best_choice->met},

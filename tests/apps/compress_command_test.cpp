@@ -13,6 +13,7 @@
 #include <relume/field.hpp>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "compress/checkpoint.hpp"
 #include "compress/clustered_factorization.hpp"
@@ -355,9 +356,20 @@ TEST(CompressCommand, GridPairsThatCannotFitAreNotFactored) {
   const nlohmann::json choice = read_json(dir / "t.json")["rate_target"];
   EXPECT_FALSE(choice["met"].get<bool>());
   std::set<std::pair<int, int>> factored, skipped;
+  std::vector<nlohmann::json> stored, finer;
   for (const auto& tried : choice["tried"]) {
     factored.insert({tried["terms"].get<int>(), tried["clusters"].get<int>()});
-    EXPECT_GT(tried["points"][0]["bytes"].get<std::uint64_t>(), 600u) << "its smallest container";
+    (tried.contains("points") ? stored : finer).push_back(tried);
+  }
+  // Of the pair's ways, only the coarsest is stored: its smallest container is already too large.
+  ASSERT_EQ(stored.size(), 1u) << choice.dump();
+  EXPECT_GT(stored[0]["points"][0]["bytes"].get<std::uint64_t>(), 600u) << "its smallest container";
+  EXPECT_FALSE(finer.empty()) << choice.dump();
+  for (const auto& way : finer) {
+    EXPECT_LE(way["term_budget"].get<double>(), stored[0]["term_budget"].get<double>());
+    EXPECT_LE(way["quantization_budget"].get<double>(),
+              stored[0]["quantization_budget"].get<double>());
+    EXPECT_NE(way["not_stored"].get<std::string>().find("coarser way"), std::string::npos);
   }
   for (const auto& pair : choice["not_factored"])
     skipped.insert({pair["terms"].get<int>(), pair["clusters"].get<int>()});
