@@ -255,8 +255,8 @@ class CompressionRunner {
                                       rate_target(asked_, settings_.solver, *field_, psnr_mask_),
                                       container_, asked_budget, stats_);
     quantize_start_ = Clock::now();
-    compressed_ = search.field;  // already quantized
-    stored_ = quantize_for_container(search.field, container_);
+    compressed_ = std::move(search.field);  // already quantized
+    stored_ = quantize_for_container(compressed_, container_);
     quantization_ = search.quantization;
     settings_.compression = search.options;
     target_key_ = asked_.target_error > 0 ? "target_error" : "rate_target";
@@ -326,12 +326,21 @@ class CompressionRunner {
     time_phase("write", start);
   }
 
+  // Whether the stored field holds the values compressed_ computed (no quantization, no float16).
+  bool stored_as_computed() const {
+    return !quantization_ && container_.weights != ValuePrecision::float16 &&
+           container_.residual != ValuePrecision::float16;
+  }
+
   void measure_in_memory() {
     if (!field_) return;
     const auto start = Clock::now();
     errors_ = measure_field_errors(*field_, stored_, stats_.residual_entries, asked_.psnr_white,
                                    psnr_mask_, threads());
-    float32_masked_ = relative_error(*field_, compressed_, true, all_residual_entries, threads());
+    float32_masked_ = stored_as_computed()
+                          ? errors_.masked
+                          : relative_error(*field_, compressed_, true, all_residual_entries,
+                                           threads());
     time_phase("error_measure", start);
   }
 
@@ -356,8 +365,7 @@ class CompressionRunner {
     if (plan_) report["plan"] = plan_json(*plan_);
     if (streamed_) report["streamed"] = streamed_json(*streamed_);
     if (!target_choice_.is_null()) report[target_key_] = target_choice_;
-    if (quantization_ || container_.weights == ValuePrecision::float16 ||
-        container_.residual == ValuePrecision::float16) {
+    if (!stored_as_computed()) {
       const double quantization_error =
           field_ ? relative_error(compressed_, stored_, all_residual_entries, inputs.threads).mean
                  : std::numeric_limits<double>::quiet_NaN();

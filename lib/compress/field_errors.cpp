@@ -3,6 +3,12 @@
 #include "compress/field_errors.hpp"
 
 #include <cmath>
+#include <relume/error.hpp>
+#include <string>
+
+#include "core/parallel.hpp"
+#include "model/compressed_field_checks.hpp"
+#include "model/reconstruct_field.hpp"
 
 namespace relume {
 namespace {
@@ -65,18 +71,78 @@ FieldErrors measure_field_errors(const ReflectanceField& original,
                                  const CompressedField& compressed, int residual_entries,
                                  double white, const std::vector<std::uint8_t>& psnr_mask,
                                  unsigned threads) {
-  FieldErrors errors;
-  errors.all = relative_error(original, compressed, false, all_residual_entries, threads);
-  errors.masked = relative_error(original, compressed, true, all_residual_entries, threads);
-  for (const int cap : prefix_caps) {
-    if (cap >= residual_entries) break;
-    errors.masked_by_prefix.emplace_back(cap,
-                                         relative_error(original, compressed, true, cap, threads));
-  }
-  errors.per_light = per_light_error(original, compressed, true, all_residual_entries, threads);
-  errors.psnr = psnr_8bit(original, compressed, white, all_residual_entries, threads, psnr_mask);
-  errors.psnr_pixels = original.pixels();
+  validate_compressed_field(compressed, "cannot measure the errors of the compressed field");
+  check_original_matches(original, compressed, all_residual_entries);
+  check_psnr_white(white);
   const std::vector<std::uint8_t>& region = psnr_mask.empty() ? compressed.mask : psnr_mask;
+  if (region.size() != compressed.mask.size())
+    throw Error("cannot measure the PSNR inside a mask of " + std::to_string(region.size()) +
+                " pixels: the field has " + std::to_string(compressed.mask.size()));
+  std::vector<int> caps;  // the prefixes measured: those below the entries kept
+  for (const int cap : prefix_caps)
+    if (cap < residual_entries) caps.push_back(cap);
+  const int lights = compressed.lights;
+  const double scale = 255.0 / white;
+  const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
+
+  // One reconstruction of each function serves every measure (and one more per prefix cap, for
+  // masked functions); blocks of functions summed in order, so the result does not depend on the
+  // thread count.
+  struct Block {
+    RelativeError all, masked;
+    std::vector<RelativeError> by_prefix;
+    PerLightErrorSum per_light;
+    Psnr8Sums psnr;
+  };
+  constexpr std::size_t block = 1024;
+  const std::size_t functions = std::size_t(original.functions());
+  const std::size_t blocks = (functions + block - 1) / block;
+  std::vector<Block> parts(blocks);
+  const unsigned workers = resolve_thread_count(threads);
+  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
+  std::vector<std::vector<float>> rebuilt(workers, std::vector<float>(lights)),
+      prefix(workers, std::vector<float>(lights));
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
+    Block& part = parts[b];
+    part.by_prefix.resize(caps.size());
+    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
+      const float* exact = original.values.row(Eigen::Index(p)).data();
+      float* approximate = rebuilt[worker].data();
+      reconstruct_function(compressed, row_of[p], all_residual_entries, sums[worker].data(),
+                           approximate);
+      const std::size_t pixel = p / std::size_t(compressed.channels);
+      add_relative_error(part.all, exact, approximate, lights);
+      part.psnr.add(exact, approximate, lights, scale, region[pixel] != 0);
+      if (!compressed.mask[pixel]) continue;
+      add_relative_error(part.masked, exact, approximate, lights);
+      part.per_light.add(std::int64_t(p), exact, approximate, lights);
+      for (std::size_t k = 0; k < caps.size(); ++k) {
+        reconstruct_function(compressed, row_of[p], caps[k], sums[worker].data(),
+                             prefix[worker].data());
+        add_relative_error(part.by_prefix[k], exact, prefix[worker].data(), lights);
+      }
+    }
+  });
+  FieldErrors errors;
+  std::vector<RelativeError> all(blocks), masked(blocks);
+  std::vector<PerLightErrorSum> per_light(blocks);
+  std::vector<Psnr8Sums> psnr(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    all[b] = parts[b].all;
+    masked[b] = parts[b].masked;
+    per_light[b] = std::move(parts[b].per_light);
+    psnr[b] = std::move(parts[b].psnr);
+  }
+  errors.all = average_of(all);
+  errors.masked = average_of(masked);
+  for (std::size_t k = 0; k < caps.size(); ++k) {
+    std::vector<RelativeError> cut(blocks);
+    for (std::size_t b = 0; b < blocks; ++b) cut[b] = parts[b].by_prefix[k];
+    errors.masked_by_prefix.emplace_back(caps[k], average_of(cut));
+  }
+  errors.per_light = per_light_error_of(per_light);
+  errors.psnr = psnr_of_sums(psnr, lights, functions);
+  errors.psnr_pixels = original.pixels();
   for (const std::uint8_t inside : region) errors.psnr_mask_pixels += inside != 0;
   return errors;
 }

@@ -26,13 +26,48 @@ double psnr_of(const std::vector<double>& squared_error_per_light, double sample
   return 20 * std::log10(255.0) - 10 * std::log10(mse);
 }
 
+}  // namespace
+
+void Psnr8Sums::add(const float* exact, const float* approximate, int lights, double scale,
+                    bool in_region) {
+  if (all.empty()) {
+    all.assign(lights, 0.0);
+    inside.assign(lights, 0.0);
+  }
+  inside_count += in_region;
+  for (int i = 0; i < lights; ++i) {
+    const double d = to_8bit(exact[i], scale) - to_8bit(approximate[i], scale);
+    all[i] += d * d;
+    if (in_region) inside[i] += d * d;
+  }
+}
+
+Psnr8 psnr_of_sums(const std::vector<Psnr8Sums>& blocks, int lights, std::size_t functions) {
+  std::vector<double> all_total(lights, 0.0), inside_total(lights, 0.0);
+  double inside_samples = 0;
+  for (const Psnr8Sums& block : blocks) {
+    for (std::size_t i = 0; i < block.all.size(); ++i) {
+      all_total[i] += block.all[i];
+      inside_total[i] += block.inside[i];
+    }
+    inside_samples += double(block.inside_count);
+  }
+  return {psnr_of(all_total, double(functions)), psnr_of(inside_total, inside_samples)};
+}
+
+void check_psnr_white(double white) {
+  if (!(white > 0) || !std::isfinite(white))
+    throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
+}
+
+namespace {
+
 // The PSNR, and with `relative` also the Eq. 16 error over the compressed field's mask (as
 // relative_error(original, compressed, true, residual_cap) defines it), from one reconstruction.
 Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& compressed,
                    double white, int residual_cap, bool stored_rows_exact, unsigned threads,
                    const std::vector<std::uint8_t>& mask, RelativeError* relative = nullptr) {
-  if (!(white > 0) || !std::isfinite(white))
-    throw Error("the PSNR white level must be a positive number, got " + std::to_string(white));
+  check_psnr_white(white);
   check_residual_cap(residual_cap);
   validate_compressed_field(compressed, "cannot measure the PSNR of the compressed field");
   if (original.width != compressed.width || original.height != compressed.height ||
@@ -51,15 +86,12 @@ Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& comp
   constexpr std::size_t block = 4096;
   const std::size_t functions = std::size_t(original.functions());
   const std::size_t blocks = (functions + block - 1) / block;
-  std::vector<std::vector<double>> all(blocks), inside(blocks);
-  std::vector<std::size_t> inside_count(blocks, 0);
+  std::vector<Psnr8Sums> partial(blocks);
   std::vector<RelativeError> relative_part(blocks);
   const unsigned workers = resolve_thread_count(threads);
   std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
   std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
   parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
-    all[b].assign(lights, 0.0);
-    inside[b].assign(lights, 0.0);
     for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
       const float* exact = original.values.row(Eigen::Index(p)).data();
       if (stored_rows_exact && row_of[p] >= 0)
@@ -68,29 +100,14 @@ Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& comp
         reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
                              approx[worker].data());
       const std::size_t pixel = p / std::size_t(compressed.channels);
-      const bool masked = inside_mask[pixel] != 0;
-      inside_count[b] += masked;
       const float* approximate = approx[worker].data();
-      for (int i = 0; i < lights; ++i) {
-        const double d = to_8bit(exact[i], scale) - to_8bit(approximate[i], scale);
-        all[b][i] += d * d;
-        if (masked) inside[b][i] += d * d;
-      }
+      partial[b].add(exact, approximate, lights, scale, inside_mask[pixel] != 0);
       if (relative && compressed.mask[pixel])
         add_relative_error(relative_part[b], exact, approximate, lights);
     }
   });
-  std::vector<double> all_total(lights, 0.0), inside_total(lights, 0.0);
-  double inside_samples = 0;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    for (int i = 0; i < lights; ++i) {
-      all_total[i] += all[b][i];
-      inside_total[i] += inside[b][i];
-    }
-    inside_samples += double(inside_count[b]);
-  }
   if (relative) *relative = average_of(relative_part);
-  return {psnr_of(all_total, double(functions)), psnr_of(inside_total, inside_samples)};
+  return psnr_of_sums(partial, lights, functions);
 }
 
 }  // namespace

@@ -6,9 +6,11 @@
 // of error weigh.
 #pragma once
 
+#include <cstddef>
 #include <limits>
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
+#include <vector>
 
 namespace relume {
 
@@ -17,6 +19,22 @@ struct Psnr8 {
   double whole_frame = 0;
   double masked = 0;
 };
+
+// The squared 8-bit errors per light of a block of functions, added one function at a time, and
+// the blocks merged in order into the PSNR: what psnr_8bit measures, for a caller that
+// reconstructs each function once for several measures (compress/field_errors.hpp).
+struct Psnr8Sums {
+  std::vector<double> all, inside;  // per light: over every function, over those in the region
+  std::size_t inside_count = 0;     // functions in the region
+  // One function as stored and as reconstructed; `scale` = 255 / white.
+  void add(const float* exact, const float* approximate, int lights, double scale,
+           bool in_region);
+};
+// `functions`: all the blocks' functions.
+Psnr8 psnr_of_sums(const std::vector<Psnr8Sums>& blocks, int lights, std::size_t functions);
+
+// Throws Error unless `white` is a positive finite number.
+void check_psnr_white(double white);
 
 // `white`: the field value that maps to 255 (1 for fields of 8-bit or normalised images).
 // `mask`: width x height, non-zero inside, for the masked figure; empty: the compressed field's

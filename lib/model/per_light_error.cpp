@@ -14,69 +14,44 @@ namespace {
 
 constexpr std::size_t levels = std::size(per_light_error_levels);
 
-// One block's figures; functions_above holds counts until the blocks are merged.
-struct BlockFigures {
-  PerLightError error;
-  std::int64_t above[levels] = {};
-};
-
 }  // namespace
 
-PerLightError per_light_error(const ReflectanceField& original, const CompressedField& compressed,
-                              bool masked_only, int residual_cap, unsigned threads) {
-  validate_compressed_field(compressed, "cannot measure the per-light error of the field");
-  check_original_matches(original, compressed, residual_cap);
-  const int lights = compressed.lights;
-  const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
-  constexpr std::size_t block = 1024;
-  const std::size_t functions = std::size_t(original.functions());
-  const std::size_t blocks = (functions + block - 1) / block;
-  std::vector<BlockFigures> partial(blocks);
-  const unsigned workers = resolve_thread_count(threads);
-  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
-  std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
-  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
-    BlockFigures& part = partial[b];
-    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
-      if (masked_only && !compressed.mask[p / compressed.channels]) continue;
-      const float* exact = original.values.row(Eigen::Index(p)).data();
-      float* rebuilt = approx[worker].data();
-      reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(), rebuilt);
-      double peak = 0, largest = 0;
-      int largest_light = 0;
-      for (int i = 0; i < lights; ++i) peak = std::max(peak, std::abs(double(exact[i])));
-      part.error.values_measured += lights;
-      for (int i = 0; i < lights; ++i) {
-        const double error = std::abs(double(exact[i]) - rebuilt[i]);
-        if (error > largest) {
-          largest = error;
-          largest_light = i;
-        }
-        if (exact[i] >= 0 && rebuilt[i] < 0) {
-          ++part.error.negative_values;
-          if (peak > 0)
-            part.error.most_negative = std::min(part.error.most_negative, rebuilt[i] / peak);
-        }
-      }
-      if (peak == 0) {
-        ++part.error.zero_peak_skipped;
-        continue;
-      }
-      const double relative = largest / peak;
-      ++part.error.functions_measured;
-      part.error.mean_of_largest += relative;
-      for (std::size_t level = 0; level < levels; ++level)
-        part.above[level] += relative > per_light_error_levels[level];
-      if (relative > part.error.largest) {
-        part.error.largest = relative;
-        part.error.function = std::int64_t(p);
-        part.error.light = largest_light;
-      }
+void PerLightErrorSum::add(std::int64_t p, const float* exact, const float* rebuilt, int lights) {
+  double peak = 0, largest = 0;
+  int largest_light = 0;
+  for (int i = 0; i < lights; ++i) peak = std::max(peak, std::abs(double(exact[i])));
+  error.values_measured += lights;
+  for (int i = 0; i < lights; ++i) {
+    const double difference = std::abs(double(exact[i]) - rebuilt[i]);
+    if (difference > largest) {
+      largest = difference;
+      largest_light = i;
     }
-  });
+    if (exact[i] >= 0 && rebuilt[i] < 0) {
+      ++error.negative_values;
+      if (peak > 0) error.most_negative = std::min(error.most_negative, rebuilt[i] / peak);
+    }
+  }
+  if (peak == 0) {
+    ++error.zero_peak_skipped;
+    return;
+  }
+  const double relative = largest / peak;
+  ++error.functions_measured;
+  error.mean_of_largest += relative;
+  for (std::size_t level = 0; level < levels; ++level)
+    above[level] += relative > per_light_error_levels[level];
+  if (relative > error.largest) {
+    error.largest = relative;
+    error.function = p;
+    error.light = largest_light;
+  }
+}
+
+PerLightError per_light_error_of(const std::vector<PerLightErrorSum>& blocks) {
   PerLightError total;
   std::int64_t above[levels] = {};
-  for (const BlockFigures& part : partial) {  // in block order: ties keep the first function
+  for (const PerLightErrorSum& part : blocks) {  // in block order: ties keep the first function
     const PerLightError& e = part.error;
     if (e.largest > total.largest) {
       total.largest = e.largest;
@@ -96,6 +71,31 @@ PerLightError per_light_error(const ReflectanceField& original, const Compressed
   for (std::size_t level = 0; level < levels; ++level)
     total.functions_above.push_back(double(above[level]) / measured);
   return total;
+}
+
+PerLightError per_light_error(const ReflectanceField& original, const CompressedField& compressed,
+                              bool masked_only, int residual_cap, unsigned threads) {
+  validate_compressed_field(compressed, "cannot measure the per-light error of the field");
+  check_original_matches(original, compressed, residual_cap);
+  const int lights = compressed.lights;
+  const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
+  constexpr std::size_t block = 1024;
+  const std::size_t functions = std::size_t(original.functions());
+  const std::size_t blocks = (functions + block - 1) / block;
+  std::vector<PerLightErrorSum> partial(blocks);
+  const unsigned workers = resolve_thread_count(threads);
+  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
+  std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
+  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
+    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
+      if (masked_only && !compressed.mask[p / compressed.channels]) continue;
+      float* rebuilt = approx[worker].data();
+      reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(), rebuilt);
+      partial[b].add(std::int64_t(p), original.values.row(Eigen::Index(p)).data(), rebuilt,
+                     lights);
+    }
+  });
+  return per_light_error_of(partial);
 }
 
 }  // namespace relume

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iterator>
 #include <relume/compressed_field.hpp>
 #include <relume/field.hpp>
 #include <vector>
@@ -31,6 +32,17 @@ struct PerLightError {
   std::int64_t values_measured = 0;    // lights x functions measured (zero-peak ones included)
   double most_negative = 0;            // min over those of R~ / peak of R[p,:] (<= 0)
 };
+
+// The figures of a block of functions, added one function at a time, and the blocks merged in
+// order into the result: what per_light_error measures, for a caller that reconstructs each
+// function once for several measures (compress/field_errors.hpp).
+struct PerLightErrorSum {
+  PerLightError error;  // its functions_above left empty: `above` counts them
+  std::int64_t above[std::size(per_light_error_levels)] = {};
+  // Function p (its index in the field) as stored and as reconstructed, `lights` values each.
+  void add(std::int64_t p, const float* exact, const float* rebuilt, int lights);
+};
+PerLightError per_light_error_of(const std::vector<PerLightErrorSum>& blocks);
 
 // masked_only: only functions whose pixel is inside the compressed field's mask. Throws Error
 // unless `original` has the compressed field's shape and lights, for an inconsistent compressed
