@@ -1,6 +1,7 @@
 // Implementation of the one-basis model (see global_basis.hpp).
 #include "compress/global_basis.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <relume/error.hpp>
@@ -21,6 +22,48 @@ std::vector<std::uint32_t> stored_functions(const ReflectanceField& field) {
     if (field.values.row(p).squaredNorm() > 0) stored.push_back(std::uint32_t(p));
   }
   return stored;
+}
+
+// The 12-bit step of `row`'s largest value: the finest a term is stored at.
+double finest_step(const Eigen::RowVectorXd& row) {
+  return std::max(row.cwiseAbs().maxCoeff(), 1e-30) / (std::ldexp(1.0, global_basis_bits - 1) - 1);
+}
+
+// Steps for `basis` (terms x lights). A basis error d in term j costs |W[:,j]|^2 |d|^2 in the
+// light images (term_energy[j] = |W[:,j]|^2). The steps are allotted so each term's share is
+// equal (reverse water-filling: step_j ~ 1 / |W[:,j]|) and all of them together add
+// `added_error` (a sum over every stored value); never finer than finest_step (the whole basis,
+// where nothing is truncated), never coarser than 4x the largest value (every integer 0, as for
+// a term no weight uses).
+std::vector<double> basis_steps(const Eigen::MatrixXd& basis, const Eigen::VectorXd& term_energy,
+                                double added_error) {
+  const Eigen::Index terms = basis.rows(), lights = basis.cols();
+  std::vector<double> steps;
+  for (Eigen::Index j = 0; j < terms; ++j) {
+    const double finest = finest_step(basis.row(j)),
+                 coarsest = 4 * basis.row(j).cwiseAbs().maxCoeff();
+    steps.push_back(
+        term_energy[j] > 0
+            ? std::clamp(std::sqrt(12 * added_error / double(terms * lights * term_energy[j])),
+                         finest, std::max(coarsest, finest))
+            : std::max(coarsest, finest));
+  }
+  return steps;
+}
+
+// `basis` as out.bases: integers of at most global_basis_bits bits times steps[j] in term j.
+void store_quantized_basis(const Eigen::MatrixXd& basis, const std::vector<double>& steps,
+                           CompressedField& out) {
+  ValueQuantization& quantization = out.quantization;
+  quantization.basis_bits = global_basis_bits;
+  quantization.basis_scales.clear();
+  out.bases.resize(std::size_t(basis.size()));
+  for (Eigen::Index j = 0; j < basis.rows(); ++j) {
+    const float scale = float(steps[std::size_t(j)]);
+    quantization.basis_scales.push_back(scale);
+    for (Eigen::Index i = 0; i < basis.cols(); ++i)
+      out.bases[std::size_t(j * basis.cols() + i)] = float(std::round(basis(j, i) / scale) * scale);
+  }
 }
 
 }  // namespace
@@ -94,31 +137,59 @@ CompressedField global_basis_field(const ReflectanceField& field, const Eigen::M
     field_energy += block_energy[b];
     term_energy += block_term_energy[b];
   }
-  // A basis error d in term j costs |W[:,j]|^2 |d|^2 in the light images. The steps are
-  // allotted so each term's share is equal (reverse water-filling: step_j ~ 1 / |W[:,j]|) and
-  // all of them together add `basis_error_share` to the error of truncating at `terms`; never
-  // finer than 12 bits of the term's largest value (the whole basis, or a flat field).
-  const double rows = double(std::max<std::size_t>(out.stored_function.size(), 1));
-  const double truncation = std::max(0.0, field_energy - term_energy.sum()) / (rows * out.lights);
-  const double basis_error = basis_error_share * truncation;  // per light-image value
-  ValueQuantization& quantization = out.quantization;
-  quantization.basis_bits = global_basis_bits;
-  const double largest_integer = std::ldexp(1.0, global_basis_bits - 1) - 1;
-  out.bases.resize(std::size_t(terms) * std::size_t(out.lights));
-  for (int j = 0; j < terms; ++j) {
-    const double largest = std::max(directions.row(j).cwiseAbs().maxCoeff(), 1e-30);
-    double step = largest / largest_integer;
-    if (term_energy[j] > 0)  // at most 4x the largest value: every integer is 0 by then
-      step = std::clamp(std::sqrt(12 * rows * basis_error / (terms * term_energy[j])), step,
-                        4 * largest);
-    const float scale = float(step);
-    quantization.basis_scales.push_back(scale);
-    for (int i = 0; i < out.lights; ++i)
-      out.bases[std::size_t(j) * out.lights + i] =
-          float(std::round(directions(j, i) / scale) * scale);
-  }
+  const double truncation = std::max(0.0, field_energy - term_energy.sum());
+  const Eigen::MatrixXd basis = directions.topRows(terms);
+  store_quantized_basis(basis, basis_steps(basis, term_energy, basis_error_share * truncation),
+                        out);
   out.residual.row_offsets.assign(out.stored_function.size() + 1, 0);
   return out;
+}
+
+void refit_global_basis(const ReflectanceField& field, CompressedField& coded, unsigned threads) {
+  const int terms = coded.terms, lights = coded.lights;
+  const std::size_t rows = coded.stored_function.size();
+  if (coded.clusters != 1 || field.lights() != lights || std::size_t(coded.weights.rows()) != rows)
+    throw Error("refit_global_basis: a one-basis field of " + std::to_string(lights) +
+                " lights and its stored rows expected");
+  // W^T W and W^T X over the stored rows X, summed in a fixed number of chunks (each in
+  // row order, then the chunks in order): the same sums for any thread count.
+  constexpr std::size_t chunks = 64, block = 1024;
+  std::vector<Eigen::MatrixXd> gram(chunks, Eigen::MatrixXd::Zero(terms, terms));
+  std::vector<Eigen::MatrixXd> cross(chunks, Eigen::MatrixXd::Zero(terms, lights));
+  parallel_for(chunks, threads, [&](std::size_t c, unsigned) {
+    const std::size_t end = rows * (c + 1) / chunks;
+    RowMatrixF values(Eigen::Index(block), lights);
+    for (std::size_t first = rows * c / chunks; first < end; first += block) {
+      const auto count = Eigen::Index(std::min(block, end - first));
+      for (Eigen::Index r = 0; r < count; ++r)
+        values.row(r) = field.values.row(coded.stored_function[first + std::size_t(r)]);
+      const auto weights = coded.weights.middleRows(Eigen::Index(first), count);
+      gram[c] += (weights.transpose() * weights).cast<double>();
+      cross[c] += (weights.transpose() * values.topRows(count)).cast<double>();
+    }
+  });
+  Eigen::MatrixXd weight_gram = Eigen::MatrixXd::Zero(terms, terms);
+  Eigen::MatrixXd weight_cross = Eigen::MatrixXd::Zero(terms, lights);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    weight_gram += gram[c];
+    weight_cross += cross[c];
+  }
+  // F = (W^T W)^-1 W^T X. A term whose weights decode to (nearly) nothing is left undetermined by
+  // the fit: a ridge towards the basis the weights were coded for keeps it.
+  Eigen::MatrixXd coded_for(terms, lights);
+  for (int j = 0; j < terms; ++j)
+    for (int i = 0; i < lights; ++i) coded_for(j, i) = coded.bases[std::size_t(j) * lights + i];
+  const double ridge = 1e-12 * std::max(weight_gram.trace() / terms, 1e-300);
+  const Eigen::MatrixXd refit = (weight_gram + ridge * Eigen::MatrixXd::Identity(terms, terms))
+                                    .ldlt()
+                                    .solve(weight_cross + ridge * coded_for);
+  // The steps the weights were coded for, so that the basis costs about the bytes it was
+  // planned at; finer never, coarser only where a row outgrew its 12 bits.
+  std::vector<double> steps;
+  for (int j = 0; j < terms; ++j)
+    steps.push_back(std::max(double(coded.quantization.basis_scales[std::size_t(j)]),
+                             finest_step(refit.row(j))));
+  store_quantized_basis(refit, steps, coded);
 }
 
 }  // namespace relume

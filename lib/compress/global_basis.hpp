@@ -30,4 +30,12 @@ Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms
 CompressedField global_basis_field(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                    int terms, unsigned threads = 0);
 
+// `coded`'s basis (a global_basis_field whose W the container's coding has replaced by what its
+// codestream decodes to) refitted to that W: F = argmin |X - W F|^2 over the stored functions X,
+// the least-squares answer to the coding's error in W. Stored at the steps the weights were
+// coded for (coarser only where a refit row outgrew its 12 bits), so its bytes stay about those
+// the rate search planned.
+void refit_global_basis(const ReflectanceField& field, CompressedField& coded,
+                        unsigned threads = 0);
+
 }  // namespace relume

@@ -241,4 +241,24 @@ GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::Matr
   return fit;
 }
 
+bool refit_fitted_basis(const ReflectanceField& original, CompressedField& fitted,
+                        PlanesRatePoint& point, bool met, const RateTarget& target,
+                        const ContainerOptions& container, unsigned threads) {
+  throw_if_interrupted();
+  const std::vector<float> bases = fitted.bases;
+  const std::vector<float> scales = fitted.quantization.basis_scales;
+  refit_global_basis(original, fitted, threads);
+  const StoredMeasure refit = measure_stored(original, fitted, target, container, threads);
+  const bool refit_met = target.bytes > 0 ? refit.bytes <= target.bytes : refit.psnr >= target.psnr;
+  if ((refit_met || !met) && refit.psnr > point.psnr) {
+    point.bytes = refit.bytes;
+    point.error = refit.error;
+    point.psnr = refit.psnr;
+    return true;
+  }
+  fitted.bases = bases;
+  fitted.quantization.basis_scales = scales;
+  return false;
+}
+
 }  // namespace relume

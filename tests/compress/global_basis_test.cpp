@@ -1,19 +1,22 @@
 // The one-basis model's basis quantization (compress/global_basis.hpp): steps as coarse as keep
 // the basis's error at basis_error_share of the truncation error, finer for the strong terms,
-// and the 12-bit steps of each term's largest value when nothing is truncated.
+// and the 12-bit steps of each term's largest value when nothing is truncated; and the basis
+// refitted to the weights as their coding left them.
 #include "compress/global_basis.hpp"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
 #include <cmath>
 
+#include "container/weight_plane_coding.hpp"
 #include "model/random_compressed_field.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {
 namespace {
 
-ReflectanceField sample_original() {
+ReflectanceField sample_original(double noise = 0.01) {
   RandomFieldShape shape;
   shape.width = 40;
   shape.height = 32;
@@ -21,7 +24,7 @@ ReflectanceField sample_original() {
   shape.clusters = 3;
   shape.terms = 3;
   shape.residual_per_function = 2;
-  return testing::noisy_original(random_compressed_field(shape), 0.01);
+  return testing::noisy_original(random_compressed_field(shape), noise);
 }
 
 // Mean squared difference per value between the field and W F over the stored functions.
@@ -90,6 +93,79 @@ TEST(GlobalBasis, TheWholeBasisKeepsTwelveBitsOfEachTerm) {
   const double mean_square = original.values.cast<double>().squaredNorm() /
                              double(original.values.size());
   EXPECT_LT(stored_error(original, field, stored_basis(field)), 1e-6 * mean_square);
+}
+
+// A field of 12 terms whose W is coded as JPEG 2000 planes in few bytes: far from its projection.
+// (Refit tests use a field with little noise, where the coding's error is most of the error.)
+CompressedField coarsely_coded(const ReflectanceField& original) {
+  const Eigen::MatrixXd directions = global_basis_directions(original, original.lights());
+  CompressedField field = global_basis_field(original, directions, 12, 1);
+  code_weights_as_planes(field, 10000, 1);
+  return field;
+}
+
+// The least-squares basis for the field's W, solved here by the normal equations in double (the
+// least-norm one: a term the coding zeroed has a zero row).
+Eigen::MatrixXd least_squares_basis(const ReflectanceField& original,
+                                    const CompressedField& field) {
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(field.terms, field.terms);
+  Eigen::MatrixXd cross = Eigen::MatrixXd::Zero(field.terms, field.lights);
+  for (std::size_t r = 0; r < field.stored_function.size(); ++r) {
+    const Eigen::VectorXd w = field.weights.row(Eigen::Index(r)).transpose().cast<double>();
+    gram += w * w.transpose();
+    cross += w * original.values.row(field.stored_function[r]).cast<double>();
+  }
+  return gram.completeOrthogonalDecomposition().solve(cross);
+}
+
+TEST(GlobalBasis, TheRefitBasisIsTheLeastSquaresBasisOfTheCodedWeightsQuantized) {
+  const ReflectanceField original = sample_original(0.001);
+  CompressedField field = coarsely_coded(original);
+  const RowMatrixF coded_weights = field.weights;
+  const double before = stored_error(original, field, stored_basis(field));
+  const Eigen::MatrixXd best = least_squares_basis(original, field);
+  const double least = stored_error(original, field, best);
+  ASSERT_LT(least, 0.99 * before);  // the coding left room for the refit
+  refit_global_basis(original, field, 1);
+  EXPECT_EQ(field.weights, coded_weights);  // only the basis changes
+  const double after = stored_error(original, field, stored_basis(field));
+  EXPECT_GE(after, least);
+  // Most of the way from the basis the weights were coded for to the least-squares one: what is
+  // left is the basis's quantization.
+  EXPECT_LT(after - least, 0.25 * (before - least));
+  // Within a step of the least-squares basis, each term at its own step (where weights use it).
+  const Eigen::MatrixXd stored = stored_basis(field);
+  for (int j = 0; j < field.terms; ++j)
+    if (field.weights.col(j).squaredNorm() > 0)
+      EXPECT_LE((stored.row(j) - best.row(j)).cwiseAbs().maxCoeff(),
+                0.5001 * field.quantization.basis_scales[std::size_t(j)] + 1e-6)
+          << "term " << j;
+}
+
+TEST(GlobalBasis, TheRefitIsTheSameForAnyThreadCount) {
+  const ReflectanceField original = sample_original();
+  CompressedField one = coarsely_coded(original), two = one;
+  refit_global_basis(original, one, 1);
+  refit_global_basis(original, two, 2);
+  EXPECT_EQ(one.bases, two.bases);
+  EXPECT_EQ(one.quantization.basis_scales, two.quantization.basis_scales);
+}
+
+// A term whose weights the coding zeroed everywhere is not determined by the fit: it keeps the
+// basis it was coded for, finite, and the error is still lowered.
+TEST(GlobalBasis, ARefitTermWithNoWeightKeepsItsBasis) {
+  const ReflectanceField original = sample_original();
+  CompressedField field = coarsely_coded(original);
+  ASSERT_GT(field.weights.col(3).squaredNorm(), 0);
+  field.weights.col(3).setZero();
+  const Eigen::MatrixXd coded_for = stored_basis(field);
+  const double before = stored_error(original, field, coded_for);
+  refit_global_basis(original, field, 1);
+  const Eigen::MatrixXd refit = stored_basis(field);
+  ASSERT_TRUE(refit.allFinite());
+  EXPECT_LE((refit.row(3) - coded_for.row(3)).cwiseAbs().maxCoeff(),
+            0.5001 * field.quantization.basis_scales[3] + 1e-6);
+  EXPECT_LT(stored_error(original, field, refit), before);
 }
 
 }  // namespace

@@ -48,6 +48,17 @@ TEST(OneBasisRate, AByteTargetLandsWithinTwoPercentUnderItsBytes) {
   const std::uint64_t bytes = std::filesystem::file_size(dir / "t.relume");
   EXPECT_LE(bytes, 12000u);
   EXPECT_GE(bytes, 0.98 * 12000);
+  // The chosen size's basis was refitted to its coded weights, for more PSNR in the bytes.
+  const int terms = search.explanation["chosen"]["terms"].get<int>();
+  for (const auto& entry : search.explanation["tried"])
+    if (entry["terms"].get<int>() == terms) {
+      ASSERT_TRUE(entry["basis_refit"].is_object());
+      EXPECT_GT(entry["basis_refit"]["psnr_8bit"].get<double>(),
+                entry["choice"]["psnr_8bit"].get<double>());
+      const auto& chosen = search.explanation["chosen"]["point"];
+      EXPECT_EQ(entry["basis_refit"]["psnr_8bit"], chosen["psnr_8bit"]);
+      EXPECT_EQ(entry["basis_refit"]["bytes"], chosen["bytes"]);
+    }
   // The file holds the field that was measured.
   const double measured = search.explanation["chosen"]["point"]["psnr_8bit"].get<double>();
   EXPECT_NEAR(psnr_8bit(original, read_container(dir / "t.relume"), 1.0, all_residual_entries, 0,
