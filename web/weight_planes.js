@@ -4,10 +4,10 @@
 // with OpenJPEG built for WebAssembly (openjpeg/j2k_decode.js and .wasm.gz, loaded only by such
 // sites), and gives each tile its stored rows' weights from the planes as relume's reader does
 // (set_weights_from_planes in lib/model/weight_planes.cpp): plane values float(sample x step);
-// with three channels the orthonormal colour transform undone in double precision, rounded to
-// float. Whole planes, not regions at a resolution level: a pyramid level holds every 2^L-th
-// pixel, which JPEG 2000's reduced resolutions (low-pass images) are not, and one decode serves
-// every tile of every level.
+// with three channels each term's orthonormal colour transform (the manifest's colour_angles, else
+// one fixed transform) undone in double precision, rounded to float. Whole planes, not regions at a
+// resolution level: a pyramid level holds every 2^L-th pixel, which JPEG 2000's reduced resolutions
+// (low-pass images) are not, and one decode serves every tile of every level.
 import { fetchOk, forEachSetBit } from './field_data.js';
 
 // Gzipped: a third of the bytes from any server. A server that declares .gz files as
@@ -23,12 +23,23 @@ async function wasmBytes(response) {
   return new Response(inflated).arrayBuffer();
 }
 
-// transform[a][c]: component a's entry for channel c (lib/model/weight_planes.cpp).
-function colourTransform(channels) {
+// transform[a][c]: component a's entry for channel c in term j (lib/model/weight_planes.cpp):
+// with three channels the rotation Rz(a) Ry(b) Rx(c) of the term's angles (units of pi / 32767)
+// in `angles`, or without them the fixed luma / R - G / R + G - 2B transform.
+function colourTransform(channels, angles, j) {
   const identity = (a) => Array.from({ length: channels }, (_, c) => (a === c ? 1 : 0));
   if (channels !== 3) return Array.from({ length: channels }, (_, a) => identity(a));
-  const a = 1 / Math.sqrt(3), b = 1 / Math.sqrt(2), c = 1 / Math.sqrt(6);
-  return [[a, a, a], [b, -b, 0], [c, c, -2 * c]];
+  if (!angles) {
+    const a = 1 / Math.sqrt(3), b = 1 / Math.sqrt(2), c = 1 / Math.sqrt(6);
+    return [[a, a, a], [b, -b, 0], [c, c, -2 * c]];
+  }
+  const [a, b, c] = angles.slice(3 * j, 3 * j + 3).map((units) => (units * Math.PI) / 32767);
+  const [ca, sa, cb, sb, cc, sc] =
+      [Math.cos(a), Math.sin(a), Math.cos(b), Math.sin(b), Math.cos(c), Math.sin(c)];
+  return [
+    [ca * cb, ca * sb * sc - sa * cc, ca * sb * cc + sa * sc],
+    [sa * cb, sa * sb * sc + ca * cc, sa * sb * cc - ca * sc], [-sb, cb * sc, cb * cc]
+  ];
 }
 
 // Bytes the browser fetched for these URLs (its resource timings; `fallback` where it gives none).
@@ -44,9 +55,11 @@ export class WeightPlanes {
     this.field = field;
     this.step = entry.step;
     this.samples = samples;
-    // entries[c][a]: the transform's entry of component a for channel c.
-    const transform = colourTransform(field.channels);
-    this.entries = transform.map((_, c) => transform.map((row) => row[c]));
+    // entries[j][c][a]: term j's transform's entry of component a for channel c.
+    this.entries = Array.from({length: field.terms}, (_, j) => {
+      const transform = colourTransform(field.channels, entry.colour_angles, j);
+      return transform.map((_, c) => transform.map((row) => row[c]));
+    });
     this.bytes = bytes;
     this.seconds = seconds;
   }
@@ -105,8 +118,8 @@ export class WeightPlanes {
         for (let plane = 0; plane < planes; ++plane)
           values[plane] = Math.fround(samples[plane * area + fieldPixel] * step);
       }
-      const entries = this.entries[channel];
       for (let j = 0; j < terms; ++j) {
+        const entries = this.entries[j][channel];
         let weight = 0;
         for (let component = 0; component < channels; ++component)
           weight += entries[component] * values[component * terms + j];

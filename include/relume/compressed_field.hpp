@@ -58,6 +58,9 @@ struct ValueQuantization {
 struct CodedWeights {
   std::vector<std::uint8_t> codestream;
   float step = 0;
+  // Three channels: each term's colour transform as three rotation angles (weight_planes.hpp);
+  // empty: one fixed transform for every term (containers before version 6).
+  std::vector<std::int16_t> colour_angles;
 
   bool empty() const { return codestream.empty(); }
 };

@@ -23,7 +23,7 @@ namespace relume {
 // no weight for a term whose basis row is all zero: the clusters that need fewer terms than the
 // field's `terms` (model/cluster_terms.hpp) store only the weights they use. Version 4 adds
 // the dark gains, version 5 the weights coded as JPEG 2000 planes (section 'weight_planes').
-inline constexpr std::uint32_t container_format_version = 5;
+inline constexpr std::uint32_t container_format_version = 6;
 
 // How W or the residual values are stored: float32, IEEE half, or integers times the field's
 // quantization step (ValuePrecision::quantized: always so for a quantized field, see

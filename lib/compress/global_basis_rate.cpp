@@ -8,6 +8,7 @@
 #include "container/container.hpp"
 #include "container/weight_plane_coding.hpp"
 #include "core/interruption.hpp"
+#include "model/weight_planes.hpp"
 
 namespace relume {
 namespace {
@@ -36,7 +37,8 @@ class PlanesCurve {
         quantized_(quantize_weight_planes(base)),
         work_(std::move(base)) {
     // The container's bytes besides the codestream: those of a one-byte stand-in, less that byte.
-    work_.coded_weights = {{0}, 1.0f};
+    work_.coded_weights.codestream = {0};
+    work_.coded_weights.step = 1.0f;
     fixed_bytes_ = plan_container(work_, container_).file_bytes - 1;
   }
 
@@ -213,8 +215,9 @@ GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::Matr
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,
                                 const PlanesFitStart& start, const PlanesPointHook& measured) {
-  PlanesCurve curve(field, global_basis_field(field, directions, terms, threads), target, container,
-                    threads, measured);
+  CompressedField fitted = global_basis_field(field, directions, terms, threads);
+  fitted.coded_weights.colour_angles = principal_colour_angles(fitted);
+  PlanesCurve curve(field, std::move(fitted), target, container, threads, measured);
   const std::uint64_t raw_bytes =
       2 * std::uint64_t(field.channels) * std::uint64_t(terms) * std::uint64_t(field.pixels());
   const double planes = double(field.channels) * terms;

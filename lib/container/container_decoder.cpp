@@ -425,11 +425,31 @@ class ContainerDecoder {
     check_weights(field, where("weights"));
   }
 
+  // Version 6, with weight planes: each term's colour transform as three int16 angles, or an
+  // empty section (every term the fixed transform, as before version 6); only for three channels.
+  void decode_weight_colour(CompressedField& field) const {
+    if (parsed_.layout.version < 6) return;
+    ByteReader in = reader("weight_colour", 6 * std::uint64_t(field.terms));
+    if (in.remaining() == 0) return;
+    if (field.channels != 3)
+      in.fail("holds colour transforms for a field of " + std::to_string(field.channels) +
+              " channels (only three channels have them)");
+    if (in.remaining() != 6 * std::uint64_t(field.terms))
+      in.fail("has " + std::to_string(in.remaining()) + " bytes, three angles of 2 bytes for " +
+              std::to_string(field.terms) + " terms are " + std::to_string(6 * field.terms));
+    field.coded_weights.colour_angles.resize(3 * std::size_t(field.terms));
+    for (std::int16_t& angle : field.coded_weights.colour_angles) {
+      angle = std::int16_t(in.u16());
+      if (angle == -32768) in.fail("holds the angle -32768, outside -32767 to 32767");
+    }
+  }
+
   // Version 5: the codestream of W's planes when the header says W is coded so (decoded into W
-  // here), else an empty section.
+  // here), else an empty section (and from version 6 an empty weight_colour section).
   void decode_weight_planes_section(CompressedField& field, const DecodedHeader& header) const {
     if (!header.weight_planes) {
       sized_reader("weight_planes", {0});
+      if (parsed_.layout.version >= 6) sized_reader("weight_colour", {0});
       return;
     }
     const std::string at = where("weight_planes");
@@ -444,6 +464,7 @@ class ContainerDecoder {
     const ByteReader in = reader("weight_planes", 2 * samples + (1u << 20));
     const std::string_view codestream = in.rest();
     field.coded_weights.codestream.assign(codestream.begin(), codestream.end());
+    decode_weight_colour(field);
     decode_weight_planes(field, 0, at);
     check_weights(field, at);
   }

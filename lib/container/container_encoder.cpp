@@ -138,6 +138,10 @@ FieldSections encode_field_sections(const CompressedField& field,
   out.basis_scales = basis_scales.take();
   out.weight_planes.assign(field.coded_weights.codestream.begin(),
                            field.coded_weights.codestream.end());
+  ByteWriter colour;
+  for (const std::int16_t angle : field.coded_weights.colour_angles)
+    colour.u16(std::uint16_t(angle));
+  out.weight_colour = colour.take();
   return out;
 }
 
@@ -235,6 +239,7 @@ std::vector<StoredSection> sections_in_file_order(std::string header, FieldSecti
   sections.push_back({"bases", std::move(field.bases), field.basis_bytes});
   sections.push_back({"weights", std::move(rows.weights), weight_bytes});
   sections.push_back({"weight_planes", std::move(field.weight_planes), 1});
+  sections.push_back({"weight_colour", std::move(field.weight_colour), 2});
   sections.push_back({"residual_offsets", std::move(rows.lengths), widths.residual_length_bytes});
   sections.push_back({"residual_indices", std::move(rows.indices), widths.light_index_bytes});
   sections.push_back({"residual_values", std::move(rows.values), residual_bytes});

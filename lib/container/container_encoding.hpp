@@ -34,6 +34,7 @@ std::string encode_header(const CompressedField& shape, const StoredCounts& coun
 struct FieldSections {
   std::string lights, mask, functions, dark_pixels, dark, dark_gains, basis_scales, bases;
   std::string weight_planes;  // the codestream of W's planes, empty when W is stored as values
+  std::string weight_colour;  // their colour transforms' angles (int16), empty without any
   int basis_bytes = 4;  // bytes per stored basis value
 };
 
@@ -56,7 +57,7 @@ RowSections encode_row_sections(const CompressedField& field, std::size_t first_
                                 const ContainerOptions& options, const StoredWidths& widths,
                                 const std::string& where);
 
-// The 15 sections of the current version in file order, with their numbers' sizes.
+// The 16 sections of the current version in file order, with their numbers' sizes.
 std::vector<StoredSection> sections_in_file_order(std::string header, FieldSections field,
                                                   RowSections rows, const StoredWidths& widths,
                                                   int weight_bytes, int residual_bytes);

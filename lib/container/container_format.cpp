@@ -94,8 +94,17 @@ const std::vector<std::string_view>& container_section_names(std::uint32_t versi
       "dark",             "dark_gains",     "clusters",   "basis_scales",  "bases",
       "weights",          "weight_planes",  "residual_offsets", "residual_indices",
       "residual_values"};
+  static const std::vector<std::string_view> version6{
+      "header",         "lights",        "mask",          "functions",        "dark_pixels",
+      "dark",           "dark_gains",    "clusters",      "basis_scales",     "bases",
+      "weights",        "weight_planes", "weight_colour", "residual_offsets", "residual_indices",
+      "residual_values"};
   // Version 3 has version 2's sections.
-  return version == 1 ? version1 : version < 4 ? version2 : version == 4 ? version4 : version5;
+  return version == 1   ? version1
+         : version < 4  ? version2
+         : version == 4 ? version4
+         : version == 5 ? version5
+                        : version6;
 }
 
 std::string encode_preamble(const ContainerLayout& layout,

@@ -113,6 +113,15 @@ void check_weights(const CompressedField& field, const std::string& where) {
                           field.quantization.weight_step == 0 && field.terms > 0))
     throw Error(where + ": W is coded as planes with the step " + std::to_string(coded.step) +
                 ", expected a positive step, terms, and no quantization step of its values");
+  const std::size_t angles = coded.colour_angles.size();
+  if (angles > 0 &&
+      (coded.empty() || field.channels != 3 || angles != 3 * std::size_t(field.terms)))
+    throw Error(where + ": " + std::to_string(angles) + " colour angles of the weight planes, " +
+                "expected none, or 3 per term for planes of a field of three channels");
+  for (const std::int16_t angle : coded.colour_angles)
+    if (angle == -32768)
+      throw Error(where +
+                  ": a colour angle of the weight planes is -32768, outside -32767 to 32767");
 }
 
 void check_residual_offsets(const CompressedField& field, const std::string& where) {

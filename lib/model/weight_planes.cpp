@@ -1,27 +1,46 @@
 // Implementation of the weights' camera-domain planes (see weight_planes.hpp).
 #include "model/weight_planes.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <relume/error.hpp>
 #include <string>
 
 namespace relume {
 namespace {
 
+using ColourTransform = std::array<std::array<double, 3>, 3>;
+
 // Rows: the components; columns: the channels. Orthonormal, so its inverse is its transpose.
-std::array<std::array<double, 3>, 3> colour_transform() {
+ColourTransform fixed_colour_transform() {
   const double a = 1 / std::sqrt(3.0), b = 1 / std::sqrt(2.0), c = 1 / std::sqrt(6.0);
   return {{{a, a, a}, {b, -b, 0}, {c, c, -2 * c}}};
 }
 
-// The transform's entry (component, channel): the colour transform for three channels, the
-// identity otherwise.
-double transform_entry(int channels, int component, int channel) {
-  if (channels != 3) return component == channel ? 1.0 : 0.0;
-  static const auto transform = colour_transform();
-  return transform[std::size_t(component)][std::size_t(channel)];
+// Each term's transform (entry [component][channel]): the colour transforms for three channels,
+// the identity otherwise.
+std::vector<ColourTransform> colour_transforms(const CompressedField& field) {
+  ColourTransform identity{};
+  for (int a = 0; a < 3; ++a) identity[std::size_t(a)][std::size_t(a)] = 1;
+  std::vector<ColourTransform> transforms(std::size_t(field.terms), identity);
+  if (field.channels != 3) return transforms;
+  const std::vector<std::int16_t>& angles = field.coded_weights.colour_angles;
+  if (!angles.empty() && angles.size() != 3 * std::size_t(field.terms))
+    throw Error("the weight planes' colour transforms hold " + std::to_string(angles.size()) +
+                " angles, " + std::to_string(field.terms) + " terms need " +
+                std::to_string(3 * field.terms));
+  for (int j = 0; j < field.terms; ++j)
+    transforms[std::size_t(j)] =
+        angles.empty() ? fixed_colour_transform() : colour_rotation(&angles[3 * std::size_t(j)]);
+  return transforms;
+}
+
+// An angle in radians as a multiple of pi / 32767.
+std::int16_t angle_units(double radians) {
+  return std::int16_t(std::clamp(std::lround(radians / std::numbers::pi * 32767), -32767L, 32767L));
 }
 
 std::size_t plane_values(const CompressedField& field) {
@@ -34,35 +53,84 @@ std::size_t plane_values(const CompressedField& field) {
 constexpr std::size_t row_block = 512;
 
 // Calls visit(plane, j, r, pixel, entry) for every plane (component a, term j) and every stored row
-// r in [first, last) (at most row_block rows) whose channel has a non-zero entry in component a,
-// rows ascending.
+// r in [first, last) (at most row_block rows) whose channel has a non-zero entry in term j's
+// component a (`transforms`: colour_transforms of the field), rows ascending.
 template <typename Visit>
-void for_each_plane_value(const CompressedField& field, std::size_t first, std::size_t last,
-                          Visit&& visit) {
+void for_each_plane_value(const CompressedField& field,
+                          const std::vector<ColourTransform>& transforms, std::size_t first,
+                          std::size_t last, Visit&& visit) {
   const int channels = field.channels, terms = field.terms;
   std::array<std::size_t, row_block> pixel;
-  std::array<double, row_block> entry;  // of each row's channel in component a
-  for (std::size_t r = first; r < last; ++r)
+  std::array<std::uint8_t, row_block> channel;
+  for (std::size_t r = first; r < last; ++r) {
     pixel[r - first] = field.stored_function[r] / std::uint32_t(channels);
-  for (int a = 0; a < channels; ++a) {
-    for (std::size_t r = first; r < last; ++r)
-      entry[r - first] =
-          transform_entry(channels, a, int(field.stored_function[r] % std::uint32_t(channels)));
-    for (int j = 0; j < terms; ++j)
-      for (std::size_t r = first; r < last; ++r)
-        if (entry[r - first] != 0)
-          visit(std::size_t(a) * terms + j, j, r, pixel[r - first], entry[r - first]);
+    channel[r - first] = std::uint8_t(field.stored_function[r] % std::uint32_t(channels));
   }
+  for (int a = 0; a < channels; ++a)
+    for (int j = 0; j < terms; ++j) {
+      const std::array<double, 3>& row = transforms[std::size_t(j)][std::size_t(a)];
+      for (std::size_t r = first; r < last; ++r)
+        if (const double entry =
+                channels == 3 ? row[channel[r - first]] : double(a == channel[r - first]);
+            entry != 0)
+          visit(std::size_t(a) * terms + j, j, r, pixel[r - first], entry);
+    }
 }
 
 }  // namespace
 
+std::array<std::array<double, 3>, 3> colour_rotation(const std::int16_t* angles) {
+  const double unit = std::numbers::pi / 32767;
+  const double a = angles[0] * unit, b = angles[1] * unit, c = angles[2] * unit;
+  const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b),
+               cc = std::cos(c), sc = std::sin(c);
+  return {{{ca * cb, ca * sb * sc - sa * cc, ca * sb * cc + sa * sc},
+           {sa * cb, sa * sb * sc + ca * cc, sa * sb * cc - ca * sc},
+           {-sb, cb * sc, cb * cc}}};
+}
+
+std::vector<std::int16_t> principal_colour_angles(const CompressedField& field) {
+  if (field.channels != 3) return {};
+  const int terms = field.terms;
+  // Each term's 3 x 3 second moments of its channels' weights, pixel by pixel (a pixel's stored
+  // rows are consecutive; a channel without a row is 0).
+  std::vector<Eigen::Matrix3d> moments(std::size_t(terms), Eigen::Matrix3d::Zero());
+  Eigen::MatrixXd pixel_weights(3, terms);
+  for (std::size_t r = 0; r < field.stored_rows();) {
+    const std::uint32_t pixel = field.stored_function[r] / 3;
+    pixel_weights.setZero();
+    for (; r < field.stored_rows() && field.stored_function[r] / 3 == pixel; ++r)
+      pixel_weights.row(field.stored_function[r] % 3) =
+          field.weights.row(Eigen::Index(r)).cast<double>();
+    for (int j = 0; j < terms; ++j)
+      moments[std::size_t(j)] += pixel_weights.col(j) * pixel_weights.col(j).transpose();
+  }
+  std::vector<std::int16_t> angles;
+  for (const Eigen::Matrix3d& moment : moments) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(moment);
+    Eigen::Matrix3d axes =
+        solver.eigenvectors().rowwise().reverse().transpose();  // strongest first
+    if (solver.info() != Eigen::Success || !axes.allFinite()) axes.setIdentity();
+    if (axes.determinant() < 0) axes.row(2) *= -1;  // a rotation
+    // axes = Rz(a) Ry(b) Rx(c); at b = +-pi/2 only a + c or a - c is determined: a = 0 then.
+    const double cos_b = std::hypot(axes(0, 0), axes(1, 0));
+    const double b = std::atan2(-axes(2, 0), cos_b);
+    const bool locked = cos_b < 1e-9;
+    const double a = locked ? 0 : std::atan2(axes(1, 0), axes(0, 0));
+    const double c =
+        locked ? std::atan2(-axes(1, 2), axes(1, 1)) : std::atan2(axes(2, 1), axes(2, 2));
+    for (const double angle : {a, b, c}) angles.push_back(angle_units(angle));
+  }
+  return angles;
+}
+
 std::vector<float> weight_planes(const CompressedField& field) {
   const std::size_t area = std::size_t(field.width) * std::size_t(field.height);
   std::vector<float> planes(plane_values(field), 0.0f);
+  const std::vector<ColourTransform> transforms = colour_transforms(field);
   for (std::size_t first = 0; first < field.stored_rows(); first += row_block)
     for_each_plane_value(
-        field, first, std::min(field.stored_rows(), first + row_block),
+        field, transforms, first, std::min(field.stored_rows(), first + row_block),
         [&](std::size_t plane, int j, std::size_t r, std::size_t pixel, double entry) {
           planes[plane * area + pixel] += float(entry * field.weights(Eigen::Index(r), j));
         });
@@ -81,11 +149,12 @@ void set_weights_from_integer_planes(CompressedField& field,
   // components in double, in component order, then rounded to float.
   field.weights.resize(Eigen::Index(field.stored_rows()), field.terms);
   std::vector<double> sums;
+  const std::vector<ColourTransform> transforms = colour_transforms(field);
   for (std::size_t first = 0; first < field.stored_rows(); first += row_block) {
     const std::size_t last = std::min(field.stored_rows(), first + row_block);
     sums.assign((last - first) * std::size_t(field.terms), 0.0);
     for_each_plane_value(
-        field, first, last,
+        field, transforms, first, last,
         [&](std::size_t plane, int j, std::size_t r, std::size_t pixel, double entry) {
           const float value = float(double(samples[plane * area + pixel]) * step);
           sums[(r - first) * std::size_t(field.terms) + std::size_t(j)] += entry * double(value);

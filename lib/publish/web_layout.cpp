@@ -201,6 +201,7 @@ WebLayout lay_out_for_web(const CompressedField& field, int residual_cap, int ti
     layout.weight_planes = {{"file", "data/weights.j2k"},
                             {"planes", field.channels * field.terms},
                             {"step", coded.step}};
+    if (!coded.colour_angles.empty()) layout.weight_planes["colour_angles"] = coded.colour_angles;
     layout.files.push_back({"data/weights.j2k",
                             std::string(coded.codestream.begin(), coded.codestream.end()),
                             weight_planes_level});

@@ -381,7 +381,7 @@ TEST(Container, AnAlteredByteInAnySectionIsRefusedNamingTheSection) {
   write_container(path, sample_field_with_dark_pixels());
   const std::string original = read_file(path);
   const ContainerLayout layout = describe_container(path);
-  ASSERT_EQ(layout.sections.size(), 15u);
+  ASSERT_EQ(layout.sections.size(), 16u);
   for (const ContainerSection& section : layout.sections) {
     if (section.bytes == 0) continue;  // basis_scales of float bases: nothing to alter
     std::string altered = original;
@@ -439,11 +439,11 @@ TEST(Container, ForeignFilesWrongMagicAndVersionsGetClearErrors) {
   EXPECT_NE(message.find("magic"), std::string::npos) << message;
 
   std::string version = original;
-  version[8] = 6;
+  version[8] = 7;
   write_bytes(path, version);
   message = read_error(path);
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("version 6 is not supported (this relume reads versions 1 to 5)"),
+  EXPECT_NE(message.find("version 7 is not supported (this relume reads versions 1 to 6)"),
             std::string::npos)
       << message;
 
@@ -625,7 +625,8 @@ std::string with_version(const std::filesystem::path& path, std::uint32_t versio
 }
 
 // Files that older relume writers made (tests/container/data): v3_* written from sample_field and
-// testing::add_dark_pixels before version 4 added the dark gains, v4_* before version 5.
+// testing::add_dark_pixels before version 4 added the dark gains, v4_* before version 5, v5_*
+// before version 6.
 std::filesystem::path version_three_file(const std::string& name) {
   return testing::source_dir() / "tests/container/data" / name;
 }
@@ -658,6 +659,24 @@ TEST(Container, VersionFourFilesStillRead) {
   EXPECT_EQ(dark.dark_pixels, expected.dark_pixels);
   EXPECT_EQ(dark.dark, expected.dark);
   EXPECT_EQ(dark.dark_gains, expected.dark_gains);
+}
+
+TEST(Container, VersionFiveFilesStillRead) {
+  // Written by relume before version 6 added the weight_colour section (`relume synth -o s --size
+  // 24x20 --lights 16`, `relume compress s -o v5_planes.relume --target-bytes 3000
+  // --target-models one-basis`), with the W that relume read from it (`relume export`):
+  // v5_planes_weights.npy. Its planes have one fixed colour transform for every term.
+  const auto path = version_three_file("v5_planes.relume");
+  EXPECT_EQ(describe_container(path).version, 5u);
+  const CompressedField planes = read_container(path);
+  EXPECT_FALSE(planes.coded_weights.empty());
+  EXPECT_TRUE(planes.coded_weights.colour_angles.empty());
+  const NpyMatrix expected = read_npy_matrix(version_three_file("v5_planes_weights.npy"));
+  ASSERT_EQ(expected.values.rows(), planes.weights.rows());
+  ASSERT_EQ(expected.values.cols(), planes.weights.cols());
+  for (Eigen::Index r = 0; r < expected.values.rows(); ++r)
+    for (Eigen::Index j = 0; j < expected.values.cols(); ++j)
+      ASSERT_EQ(float(expected.values(r, j)), planes.weights(r, j)) << r << " " << j;
 }
 
 TEST(Container, VersionTwoFilesStillRead) {
@@ -852,9 +871,9 @@ TEST(InfoCommand, PrintsDimensionsSectionsAndRatio) {
   for (const auto& section : info["sections"])
     section_total += section["bytes"].get<std::uint64_t>();
   EXPECT_EQ(section_total + info["preamble_bytes"].get<std::uint64_t>(), file_bytes);
-  EXPECT_EQ(info["sections"][14]["name"], "residual_values");
-  EXPECT_EQ(info["sections"][14]["raw_bytes"], field.residual.nonzeros() * 2);
-  EXPECT_LE(info["sections"][14]["bytes"], field.residual.nonzeros() * 2);
+  EXPECT_EQ(info["sections"][15]["name"], "residual_values");
+  EXPECT_EQ(info["sections"][15]["raw_bytes"], field.residual.nonzeros() * 2);
+  EXPECT_LE(info["sections"][15]["bytes"], field.residual.nonzeros() * 2);
   EXPECT_DOUBLE_EQ(info["bits_per_stored_row"].get<double>(),
                    8.0 * double(file_bytes) / double(field.stored_rows()));
 

@@ -1,8 +1,13 @@
 // The weights stored as JPEG 2000 planes: the plane coder alone (byte bounds, exact decoding,
-// refusals), the colour transform between W and the planes, and the container's weight_planes
-// section (round trip, what a reader refuses).
+// refusals), the colour transforms between W and the planes (fixed, and each term's principal
+// axes), and the container's weight_planes and weight_colour sections (round trip, what a reader
+// and a writer refuse).
+#include "model/weight_planes.hpp"
+
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <relume/container.hpp>
@@ -12,7 +17,6 @@
 #include "container/weight_plane_coding.hpp"
 #include "core/atomic_file.hpp"
 #include "model/random_compressed_field.hpp"
-#include "model/weight_planes.hpp"
 #include "support/test_support.hpp"
 
 namespace relume {
@@ -127,6 +131,60 @@ TEST(WeightPlanes, TheColourTransformIsOrthonormalAndExactBothWays) {
   EXPECT_NEAR(planes[4 * area + 5], (before(15, 0) - before(16, 0)) / std::sqrt(2.0f), 1e-5);
 }
 
+// Term j's three channels are colour_j times one smooth image: the principal axes put each term
+// in its first plane to within the angles' rounding, where the fixed transform spreads the
+// coloured terms over all three.
+TEST(WeightPlanes, EachTermsPrincipalColourAxesTakeNearlyAllOfItInItsFirstPlane) {
+  CompressedField field = planes_field(1u << 20);
+  field.coded_weights = {};
+  const double colours[3][3] = {{0.9, 0.5, 0.2}, {1.0, 1.0, 1.0}, {0.1, 0.3, 1.0}};
+  field.terms = 3;
+  field.weights.conservativeResize(Eigen::NoChange, 3);
+  for (std::size_t r = 0; r < field.stored_rows(); ++r) {
+    const std::uint32_t p = field.stored_function[r];
+    const int x = int(p / 3) % 20, y = int(p / 3) / 20, c = int(p % 3);
+    for (int j = 0; j < 3; ++j)
+      field.weights(Eigen::Index(r), j) =
+          float(colours[j][c] * (1.5 + std::sin(0.3 * x + 0.2 * y * (j + 1))));
+  }
+  const auto off_first_plane_share = [&](int j) {
+    const std::vector<float> planes = weight_planes(field);
+    const std::size_t area = 20 * 16;
+    double first = 0, other = 0;
+    for (int a = 0; a < 3; ++a)
+      for (std::size_t q = 0; q < area; ++q)
+        (a == 0 ? first : other) +=
+            std::pow(double(planes[(std::size_t(a) * 3 + std::size_t(j)) * area + q]), 2);
+    return other / (first + other);
+  };
+  EXPECT_GT(off_first_plane_share(0), 0.03);  // the fixed transform: luma, R - G, R + G - 2B
+  EXPECT_GT(off_first_plane_share(2), 0.3);
+  EXPECT_LT(off_first_plane_share(1), 1e-12);  // a grey term is all luma
+  field.coded_weights.colour_angles = principal_colour_angles(field);
+  ASSERT_EQ(field.coded_weights.colour_angles.size(), 9u);
+  for (int j = 0; j < 3; ++j) EXPECT_LT(off_first_plane_share(j), 1e-7) << "term " << j;
+  // Still orthonormal, and back from the planes within a step of each weight.
+  const RowMatrixF before = field.weights;
+  const QuantizedWeightPlanes quantized = quantize_weight_planes(field);
+  set_weights_from_integer_planes(field, quantized.planes.samples, quantized.step);
+  EXPECT_LT((field.weights - before).cwiseAbs().maxCoeff(), quantized.step);
+}
+
+TEST(WeightPlanes, ColourRotationsAreRotations) {
+  for (const std::array<std::int16_t, 3> angles : {std::array<std::int16_t, 3>{0, 0, 0},
+                                                   {32767, -32767, 12345},
+                                                   {-20000, 16384, 7},
+                                                   {100, -16384, -32767},
+                                                   {-1, 1, 31000}}) {
+    const auto r = colour_rotation(angles.data());
+    Eigen::Matrix3d m;
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) m(a, c) = r[std::size_t(a)][std::size_t(c)];
+    EXPECT_LT((m * m.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_NEAR(m.determinant(), 1.0, 1e-14);
+  }
+}
+
 // A rate search quantizes the planes once and codes them at several sizes: each size gives
 // the codestream and W that coding the field whole gives.
 TEST(WeightPlanes, PlanesQuantizedOnceCodeAsTheWholeFieldDoes) {
@@ -143,18 +201,28 @@ TEST(WeightPlanes, PlanesQuantizedOnceCodeAsTheWholeFieldDoes) {
   }
 }
 
+// planes_field with each term's principal colour axes, coded in `plane_bytes`.
+CompressedField principal_planes_field(std::uint64_t plane_bytes) {
+  CompressedField field = planes_field(1u << 20);
+  field.coded_weights.colour_angles = principal_colour_angles(field);
+  code_weights_as_planes(field, plane_bytes, 1);
+  return field;
+}
+
 TEST(WeightPlanes, CodedWeightsRoundTripThroughTheContainerBitForBit) {
   testing::TempDir dir;
-  const CompressedField field = planes_field(3000);
+  const CompressedField field = principal_planes_field(3000);
   EXPECT_LE(field.coded_weights.codestream.size(), 3000u);
   write_container(dir.path() / "planes.relume", field);
   const ContainerLayout layout = describe_container(dir.path() / "planes.relume");
-  EXPECT_EQ(layout.version, 5u);
+  EXPECT_EQ(layout.version, 6u);
   EXPECT_EQ(layout.section("weights").raw_bytes, 0u);
   EXPECT_EQ(layout.section("weight_planes").raw_bytes, field.coded_weights.codestream.size());
+  EXPECT_EQ(layout.section("weight_colour").raw_bytes, 6u * 4);
   const CompressedField back = read_container(dir.path() / "planes.relume");
   EXPECT_EQ(back.coded_weights.codestream, field.coded_weights.codestream);
   EXPECT_EQ(back.coded_weights.step, field.coded_weights.step);
+  EXPECT_EQ(back.coded_weights.colour_angles, field.coded_weights.colour_angles);
   ASSERT_EQ(back.weights.rows(), field.weights.rows());
   EXPECT_EQ(std::memcmp(back.weights.data(), field.weights.data(),
                         sizeof(float) * std::size_t(field.weights.size())),
@@ -165,21 +233,42 @@ TEST(WeightPlanes, CodedWeightsRoundTripThroughTheContainerBitForBit) {
   EXPECT_EQ(read_file(dir.path() / "again.relume"), read_file(dir.path() / "planes.relume"));
 }
 
-TEST(WeightPlanes, AnAlteredOrCutCodestreamIsRefusedNamingTheSection) {
+TEST(WeightPlanes, AnAlteredOrCutCodestreamOrColourIsRefusedNamingTheSection) {
   testing::TempDir dir;
-  write_container(dir.path() / "planes.relume", planes_field(3000));
+  write_container(dir.path() / "planes.relume", principal_planes_field(3000));
   const std::string original = read_file(dir.path() / "planes.relume");
-  const ContainerSection section =
-      describe_container(dir.path() / "planes.relume").section("weight_planes");
-  std::string altered = original;
-  altered[section.offset + section.bytes / 2] ^= 0x5A;
-  write_file_atomically(dir.path() / "altered.relume", altered);
-  EXPECT_NE(error_message([&] { read_container(dir.path() / "altered.relume"); })
-                .find("section 'weight_planes' is corrupt"),
+  for (const std::string name : {"weight_planes", "weight_colour"}) {
+    const ContainerSection section = describe_container(dir.path() / "planes.relume").section(name);
+    std::string altered = original;
+    altered[section.offset + section.bytes / 2] ^= 0x5A;
+    write_file_atomically(dir.path() / "altered.relume", altered);
+    EXPECT_NE(error_message([&] {
+                read_container(dir.path() / "altered.relume");
+              }).find("section '" + name + "' is corrupt"),
+              std::string::npos);
+    write_file_atomically(dir.path() / "cut.relume", original.substr(0, section.offset + 1));
+    EXPECT_NE(error_message([&] {
+                read_container(dir.path() / "cut.relume");
+              }).find("section '" + name + "'"),
+              std::string::npos)
+        << name;
+  }
+}
+
+// Angles that are not 3 per term of a three-channel field's planes are refused before writing.
+TEST(WeightPlanes, ColourAnglesThatDoNotFitTheFieldAreRefused) {
+  testing::TempDir dir;
+  CompressedField field = principal_planes_field(3000);
+  field.coded_weights.colour_angles.pop_back();
+  EXPECT_NE(error_message([&] {
+              write_container(dir.path() / "x.relume", field);
+            }).find("11 colour angles of the weight planes, expected none, or 3 per term"),
             std::string::npos);
-  write_file_atomically(dir.path() / "cut.relume", original.substr(0, section.offset + 10));
-  EXPECT_NE(error_message([&] { read_container(dir.path() / "cut.relume"); })
-                .find("section 'weight_planes'"),
+  field = principal_planes_field(3000);
+  field.coded_weights.colour_angles[4] = -32768;
+  EXPECT_NE(error_message([&] {
+              write_container(dir.path() / "x.relume", field);
+            }).find("a colour angle of the weight planes is -32768"),
             std::string::npos);
 }
 

@@ -208,10 +208,10 @@ std::uint64_t folder_bytes(const fs::path& folder) {
   return bytes;
 }
 
-// The one-basis model's site holds the container's codestream as it is (data/weights.j2k), tiles
-// without weights and the page's decoder; a full view's data files weigh about what the
-// container does, and the page relights as the container does. Clustered sites go without the
-// decoder.
+// The one-basis model's site holds the container's codestream as it is (data/weights.j2k) with
+// its terms' colour transforms in the manifest, tiles without weights and the page's decoder; a
+// full view's data files weigh about what the container does, and the page relights as the
+// container does. Clustered sites go without the decoder.
 TEST_F(PublishedPage, OneBasisFieldShipsItsCodestreamAndEqualsRelight) {
   const CommandResult published = run_relume("publish '" + path("one_basis.relume") + "' -o '" +
                                              path("one_basis_site") + "' --tile-size 16");
@@ -221,6 +221,9 @@ TEST_F(PublishedPage, OneBasisFieldShipsItsCodestreamAndEqualsRelight) {
   const auto manifest = nlohmann::json::parse(std::ifstream(site / "manifest.json"));
   EXPECT_EQ(manifest["weight_planes"]["file"], "data/weights.j2k");
   EXPECT_EQ(manifest["weight_planes"]["planes"], 3 * manifest["field"]["terms"].get<int>());
+  // Each term's colour transform (three angles), which the page undoes as relume's reader does.
+  EXPECT_EQ(manifest["weight_planes"]["colour_angles"].size(),
+            3 * manifest["field"]["terms"].get<std::size_t>());
   for (const auto& array : manifest["tiles"]["arrays"]) EXPECT_NE(array["name"], "weights");
   EXPECT_TRUE(fs::exists(site / "openjpeg" / "j2k_decode.wasm.gz"));
   EXPECT_FALSE(fs::exists(fs::path(path("masked_site")) / "openjpeg"));
