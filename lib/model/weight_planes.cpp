@@ -20,13 +20,11 @@ ColourTransform fixed_colour_transform() {
   return {{{a, a, a}, {b, -b, 0}, {c, c, -2 * c}}};
 }
 
-// Each term's transform (entry [component][channel]): the colour transforms for three channels,
-// the identity otherwise.
+// Each term's colour transform (entry [component][channel]) for three channels; none otherwise
+// (the components are the channels).
 std::vector<ColourTransform> colour_transforms(const CompressedField& field) {
-  ColourTransform identity{};
-  for (int a = 0; a < 3; ++a) identity[std::size_t(a)][std::size_t(a)] = 1;
-  std::vector<ColourTransform> transforms(std::size_t(field.terms), identity);
-  if (field.channels != 3) return transforms;
+  if (field.channels != 3) return {};
+  std::vector<ColourTransform> transforms(std::size_t(field.terms));
   const std::vector<std::int16_t>& angles = field.coded_weights.colour_angles;
   if (!angles.empty() && angles.size() != 3 * std::size_t(field.terms))
     throw Error("the weight planes' colour transforms hold " + std::to_string(angles.size()) +
@@ -54,24 +52,26 @@ constexpr std::size_t row_block = 512;
 
 // Calls visit(plane, j, r, pixel, entry) for every plane (component a, term j) and every stored row
 // r in [first, last) (at most row_block rows) whose channel has a non-zero entry in term j's
-// component a (`transforms`: colour_transforms of the field), rows ascending.
+// component a (`transforms`: colour_transforms of the field; without any, component a is
+// channel a), rows ascending.
 template <typename Visit>
 void for_each_plane_value(const CompressedField& field,
                           const std::vector<ColourTransform>& transforms, std::size_t first,
                           std::size_t last, Visit&& visit) {
   const int channels = field.channels, terms = field.terms;
   std::array<std::size_t, row_block> pixel;
-  std::array<std::uint8_t, row_block> channel;
+  std::array<std::uint32_t, row_block> channel;
   for (std::size_t r = first; r < last; ++r) {
     pixel[r - first] = field.stored_function[r] / std::uint32_t(channels);
-    channel[r - first] = std::uint8_t(field.stored_function[r] % std::uint32_t(channels));
+    channel[r - first] = field.stored_function[r] % std::uint32_t(channels);
   }
   for (int a = 0; a < channels; ++a)
     for (int j = 0; j < terms; ++j) {
-      const std::array<double, 3>& row = transforms[std::size_t(j)][std::size_t(a)];
+      const double* row =
+          transforms.empty() ? nullptr : transforms[std::size_t(j)][std::size_t(a)].data();
       for (std::size_t r = first; r < last; ++r)
         if (const double entry =
-                channels == 3 ? row[channel[r - first]] : double(a == channel[r - first]);
+                row ? row[channel[r - first]] : double(int(channel[r - first]) == a);
             entry != 0)
           visit(std::size_t(a) * terms + j, j, r, pixel[r - first], entry);
     }

@@ -170,6 +170,32 @@ TEST(WeightPlanes, EachTermsPrincipalColourAxesTakeNearlyAllOfItInItsFirstPlane)
   EXPECT_LT((field.weights - before).cwiseAbs().maxCoeff(), quantized.step);
 }
 
+// Other channel counts have no colour transform: component a is channel a, in every term.
+TEST(WeightPlanes, FieldsOfOneOrFourChannelsKeepTheirChannelsAsPlanes) {
+  for (const int channels : {1, 4}) {
+    RandomFieldShape shape;
+    shape.width = 6;
+    shape.height = 5;
+    shape.channels = channels;
+    shape.lights = 8;
+    shape.clusters = 1;
+    shape.terms = 2;
+    shape.residual_per_function = 2;
+    shape.stored_fraction = 1.0;
+    const CompressedField field = random_compressed_field(shape);
+    EXPECT_TRUE(principal_colour_angles(field).empty());
+    const std::vector<float> planes = weight_planes(field);
+    ASSERT_EQ(planes.size(), std::size_t(channels) * 2 * 30);
+    for (std::size_t r = 0; r < field.stored_rows(); ++r) {
+      const std::uint32_t p = field.stored_function[r];
+      const std::size_t pixel = p / std::uint32_t(channels), c = p % std::uint32_t(channels);
+      for (std::size_t j = 0; j < 2; ++j)
+        EXPECT_EQ(planes[(c * 2 + j) * 30 + pixel], field.weights(Eigen::Index(r), Eigen::Index(j)))
+            << channels << " channels, row " << r;
+    }
+  }
+}
+
 TEST(WeightPlanes, ColourRotationsAreRotations) {
   for (const std::array<std::int16_t, 3> angles : {std::array<std::int16_t, 3>{0, 0, 0},
                                                    {32767, -32767, 12345},
