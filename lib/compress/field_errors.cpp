@@ -6,7 +6,6 @@
 #include <relume/error.hpp>
 #include <string>
 
-#include "core/parallel.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/reconstruct_field.hpp"
 
@@ -96,33 +95,27 @@ FieldErrors measure_field_errors(const ReflectanceField& original,
   };
   constexpr std::size_t block = 1024;
   const std::size_t functions = std::size_t(original.functions());
-  const std::size_t blocks = (functions + block - 1) / block;
+  const std::size_t blocks = item_blocks(functions, block);
   std::vector<Block> parts(blocks);
-  const unsigned workers = resolve_thread_count(threads);
-  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
-  std::vector<std::vector<float>> rebuilt(workers, std::vector<float>(lights)),
-      prefix(workers, std::vector<float>(lights));
-  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
-    Block& part = parts[b];
-    part.by_prefix.resize(caps.size());
-    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
-      const float* exact = original.values.row(Eigen::Index(p)).data();
-      float* approximate = rebuilt[worker].data();
-      reconstruct_function(compressed, row_of[p], all_residual_entries, sums[worker].data(),
-                           approximate);
-      const std::size_t pixel = p / std::size_t(compressed.channels);
-      add_relative_error(part.all, exact, approximate, lights);
-      part.psnr.add(exact, approximate, lights, scale, region[pixel] != 0);
-      if (!compressed.mask[pixel]) continue;
-      add_relative_error(part.masked, exact, approximate, lights);
-      part.per_light.add(std::int64_t(p), exact, approximate, lights);
-      for (std::size_t k = 0; k < caps.size(); ++k) {
-        reconstruct_function(compressed, row_of[p], caps[k], sums[worker].data(),
-                             prefix[worker].data());
-        add_relative_error(part.by_prefix[k], exact, prefix[worker].data(), lights);
-      }
-    }
-  });
+  for (Block& part : parts) part.by_prefix.resize(caps.size());
+  for_each_item_in_blocks(
+      functions, block, lights, threads, [&](std::size_t b, std::size_t p, FunctionScratch& rows) {
+        Block& part = parts[b];
+        const float* exact = original.values.row(Eigen::Index(p)).data();
+        const float* approximate = rows.approx.data();
+        reconstruct_function(compressed, row_of[p], all_residual_entries, rows.sum.data(),
+                             rows.approx.data());
+        const std::size_t pixel = p / std::size_t(compressed.channels);
+        add_relative_error(part.all, exact, approximate, lights);
+        part.psnr.add(exact, approximate, lights, scale, region[pixel] != 0);
+        if (!compressed.mask[pixel]) return;
+        add_relative_error(part.masked, exact, approximate, lights);
+        part.per_light.add(std::int64_t(p), exact, approximate, lights);
+        for (std::size_t k = 0; k < caps.size(); ++k) {
+          reconstruct_function(compressed, row_of[p], caps[k], rows.sum.data(), rows.second.data());
+          add_relative_error(part.by_prefix[k], exact, rows.second.data(), lights);
+        }
+      });
   FieldErrors errors;
   std::vector<RelativeError> all(blocks), masked(blocks);
   std::vector<PerLightErrorSum> per_light(blocks);

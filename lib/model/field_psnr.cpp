@@ -6,7 +6,6 @@
 #include <relume/error.hpp>
 #include <vector>
 
-#include "core/parallel.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/reconstruct_field.hpp"
 
@@ -85,27 +84,21 @@ Psnr8 measure_psnr(const ReflectanceField& original, const CompressedField& comp
   // summed in block order, so the result does not depend on the thread count.
   constexpr std::size_t block = 4096;
   const std::size_t functions = std::size_t(original.functions());
-  const std::size_t blocks = (functions + block - 1) / block;
-  std::vector<Psnr8Sums> partial(blocks);
-  std::vector<RelativeError> relative_part(blocks);
-  const unsigned workers = resolve_thread_count(threads);
-  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
-  std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
-  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
-    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
-      const float* exact = original.values.row(Eigen::Index(p)).data();
-      if (stored_rows_exact && row_of[p] >= 0)
-        std::copy(exact, exact + lights, approx[worker].begin());
-      else
-        reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(),
-                             approx[worker].data());
-      const std::size_t pixel = p / std::size_t(compressed.channels);
-      const float* approximate = approx[worker].data();
-      partial[b].add(exact, approximate, lights, scale, inside_mask[pixel] != 0);
-      if (relative && compressed.mask[pixel])
-        add_relative_error(relative_part[b], exact, approximate, lights);
-    }
-  });
+  std::vector<Psnr8Sums> partial(item_blocks(functions, block));
+  std::vector<RelativeError> relative_part(partial.size());
+  for_each_item_in_blocks(
+      functions, block, lights, threads, [&](std::size_t b, std::size_t p, FunctionScratch& rows) {
+        const float* exact = original.values.row(Eigen::Index(p)).data();
+        if (stored_rows_exact && row_of[p] >= 0)
+          std::copy(exact, exact + lights, rows.approx.begin());
+        else
+          reconstruct_function(compressed, row_of[p], residual_cap, rows.sum.data(),
+                               rows.approx.data());
+        const std::size_t pixel = p / std::size_t(compressed.channels);
+        partial[b].add(exact, rows.approx.data(), lights, scale, inside_mask[pixel] != 0);
+        if (relative && compressed.mask[pixel])
+          add_relative_error(relative_part[b], exact, rows.approx.data(), lights);
+      });
   if (relative) *relative = average_of(relative_part);
   return psnr_of_sums(partial, lights, functions);
 }

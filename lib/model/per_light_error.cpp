@@ -5,7 +5,6 @@
 #include <cmath>
 #include <iterator>
 
-#include "core/parallel.hpp"
 #include "model/compressed_field_checks.hpp"
 #include "model/reconstruct_field.hpp"
 
@@ -81,20 +80,15 @@ PerLightError per_light_error(const ReflectanceField& original, const Compressed
   const std::vector<std::int64_t> row_of = stored_row_of_function(compressed);
   constexpr std::size_t block = 1024;
   const std::size_t functions = std::size_t(original.functions());
-  const std::size_t blocks = (functions + block - 1) / block;
-  std::vector<PerLightErrorSum> partial(blocks);
-  const unsigned workers = resolve_thread_count(threads);
-  std::vector<std::vector<double>> sums(workers, std::vector<double>(lights));
-  std::vector<std::vector<float>> approx(workers, std::vector<float>(lights));
-  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
-    for (std::size_t p = b * block; p < std::min(functions, (b + 1) * block); ++p) {
-      if (masked_only && !compressed.mask[p / compressed.channels]) continue;
-      float* rebuilt = approx[worker].data();
-      reconstruct_function(compressed, row_of[p], residual_cap, sums[worker].data(), rebuilt);
-      partial[b].add(std::int64_t(p), original.values.row(Eigen::Index(p)).data(), rebuilt,
-                     lights);
-    }
-  });
+  std::vector<PerLightErrorSum> partial(item_blocks(functions, block));
+  for_each_item_in_blocks(
+      functions, block, lights, threads, [&](std::size_t b, std::size_t p, FunctionScratch& rows) {
+        if (masked_only && !compressed.mask[p / compressed.channels]) return;
+        reconstruct_function(compressed, row_of[p], residual_cap, rows.sum.data(),
+                             rows.approx.data());
+        partial[b].add(std::int64_t(p), original.values.row(Eigen::Index(p)).data(),
+                       rows.approx.data(), lights);
+      });
   return per_light_error_of(partial);
 }
 

@@ -43,29 +43,18 @@ void accumulate_stored_row(const CompressedField& field, std::size_t row, int re
     sum[field.residual.light_index[k]] += field.residual.values[k];
 }
 
-// Per-worker buffers for comparing one function at a time.
-struct FunctionScratch {
-  explicit FunctionScratch(int lights) : sum(lights), exact(lights), approx(lights) {}
-  std::vector<double> sum;
-  std::vector<float> exact, approx;
-};
-
 // Eq. 16 over items [0, count): fill(item, scratch) puts the exact and approximate rows in
 // scratch.exact / scratch.approx and returns false to leave the item out entirely. Items are
 // summed in fixed blocks in order, so the result does not depend on the thread count.
 template <class Fill>
 RelativeError average_relative_error(std::size_t count, int lights, unsigned threads, Fill fill) {
   constexpr std::size_t block = 1024;
-  const std::size_t blocks = (count + block - 1) / block;
-  std::vector<RelativeError> partial(blocks);
-  std::vector<FunctionScratch> scratch(resolve_thread_count(threads), FunctionScratch(lights));
-  parallel_for(blocks, threads, [&](std::size_t b, unsigned worker) {
-    FunctionScratch& rows = scratch[worker];
-    RelativeError& part = partial[b];
-    for (std::size_t item = b * block; item < std::min(count, (b + 1) * block); ++item) {
-      if (fill(item, rows)) add_relative_error(part, rows.exact.data(), rows.approx.data(), lights);
-    }
-  });
+  std::vector<RelativeError> partial(item_blocks(count, block));
+  for_each_item_in_blocks(
+      count, block, lights, threads, [&](std::size_t b, std::size_t item, FunctionScratch& rows) {
+        if (fill(item, rows))
+          add_relative_error(partial[b], rows.exact.data(), rows.approx.data(), lights);
+      });
   return average_of(partial);
 }
 

@@ -3,9 +3,12 @@
 // reconstruction and the error measure are declared in relume/compressed_field.hpp.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <relume/compressed_field.hpp>
 #include <vector>
+
+#include "core/parallel.hpp"
 
 namespace relume {
 
@@ -40,6 +43,35 @@ RelativeError average_of(const std::vector<RelativeError>& sums);
 
 // Stored row of every function, or unstored_row / dark_model_row(...) where it has none.
 std::vector<std::int64_t> stored_row_of_function(const CompressedField& field);
+
+// Per-worker buffers for comparing one function at a time: `sum` is reconstruct_function's
+// scratch, `exact` and `approx` (and `second`, for another reconstruction of the same function)
+// hold lights values each.
+struct FunctionScratch {
+  explicit FunctionScratch(int lights)
+      : sum(lights), exact(lights), approx(lights), second(lights) {}
+  std::vector<double> sum;
+  std::vector<float> exact, approx, second;
+};
+
+// How many blocks of `block` items for_each_item_in_blocks makes of `count` items.
+constexpr std::size_t item_blocks(std::size_t count, std::size_t block) {
+  return (count + block - 1) / block;
+}
+
+// Calls visit(b, item, scratch) for every item in [0, count), in blocks of `block` items (block b
+// holds items b * block onwards) spread over the threads, each block's items in order and with
+// its worker's scratch: sums kept per block and added in block order do not depend on the
+// thread count.
+template <class Visit>
+void for_each_item_in_blocks(std::size_t count, std::size_t block, int lights, unsigned threads,
+                             Visit visit) {
+  std::vector<FunctionScratch> scratch(resolve_thread_count(threads), FunctionScratch(lights));
+  parallel_for(item_blocks(count, block), threads, [&](std::size_t b, unsigned worker) {
+    for (std::size_t item = b * block; item < std::min(count, (b + 1) * block); ++item)
+      visit(b, item, scratch[worker]);
+  });
+}
 
 // Throws Error for a negative residual cap (all_residual_entries keeps every entry).
 void check_residual_cap(int residual_cap);
