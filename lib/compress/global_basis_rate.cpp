@@ -89,8 +89,10 @@ class PlanesCurve {
 // A codestream whose container fits `bytes` and comes within 1.5% of them: aimed at 99.3% of the
 // bytes (clear of both ends) after the fixed sections and the overhead learned from another
 // size, then corrected by what the container came to (zstd shaves the codestream's markers, the
-// header's step has more or fewer digits), keeping the largest that fits.
-GlobalBasisFit fit_bytes(PlanesCurve& curve, std::uint64_t bytes, std::int64_t overhead) {
+// header's step has more or fewer digits), keeping the largest that fits. `first_fit`: stops at
+// the first that fits, `settled` saying whether it came within the 1.5%.
+GlobalBasisFit fit_bytes(PlanesCurve& curve, std::uint64_t bytes, std::int64_t overhead,
+                         BytesFit how_close) {
   constexpr double aim_share = 0.993, enough_share = 0.985;
   const double aim = aim_share * double(bytes);
   GlobalBasisFit fit;
@@ -106,9 +108,12 @@ GlobalBasisFit fit_bytes(PlanesCurve& curve, std::uint64_t bytes, std::int64_t o
       fit.point = point;
       fit.met = met;
     }
-    if ((met && double(point.bytes) >= enough_share * double(bytes)) ||
-        (!met && plane_bytes == std::int64_t(min_plane_bytes)))
+    const bool close = met && double(point.bytes) >= enough_share * double(bytes);
+    if (close || (!met && plane_bytes == std::int64_t(min_plane_bytes))) break;
+    if (met && how_close == BytesFit::first_fit) {
+      fit.settled = false;
       break;
+    }
     plane_bytes += std::llround(aim - double(point.bytes));
   }
   return fit;
@@ -214,16 +219,18 @@ std::vector<int> global_basis_sizes(int lights) {
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,
-                                const PlanesFitStart& start, const PlanesPointHook& measured) {
+                                const PlanesFitStart& start, const PlanesPointHook& measured,
+                                BytesFit how_close) {
   CompressedField fitted = global_basis_field(field, directions, terms, threads);
   fitted.coded_weights.colour_angles = principal_colour_angles(fitted);
   PlanesCurve curve(field, std::move(fitted), target, container, threads, measured);
   const std::uint64_t raw_bytes =
       2 * std::uint64_t(field.channels) * std::uint64_t(terms) * std::uint64_t(field.pixels());
   const double planes = double(field.channels) * terms;
-  GlobalBasisFit fit = target.bytes > 0 ? fit_bytes(curve, target.bytes,
-                                                    std::llround(start.overhead_per_plane * planes))
-                                        : reach_psnr(curve, target.psnr, raw_bytes, start);
+  GlobalBasisFit fit = target.bytes > 0
+                           ? fit_bytes(curve, target.bytes,
+                                       std::llround(start.overhead_per_plane * planes), how_close)
+                           : reach_psnr(curve, target.psnr, raw_bytes, start);
   fit.field = curve.take_best();
   fit.points = curve.points();
   fit.learned.overhead_per_plane =

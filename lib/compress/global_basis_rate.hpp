@@ -35,10 +35,16 @@ struct PlanesFitStart {
 // Told of each point as it is measured (a few seconds each on a whole frame).
 using PlanesPointHook = std::function<void(const PlanesRatePoint&)>;
 
+// How far a byte target's fit goes: to a container within 1.5% under the bytes (`close`), or to
+// its first container that fits (`first_fit`: within a few percent, one codestream where `close`
+// may take two; enough to compare basis sizes, whose PSNR moves about 0.005 dB per 1% of bytes).
+enum class BytesFit { close, first_fit };
+
 struct GlobalBasisFit {
   CompressedField field;  // its weights coded at `point`
   PlanesRatePoint point;
   bool met = false;
+  bool settled = true;                  // false: a first_fit that a close fit would go on from
   std::vector<PlanesRatePoint> points;  // every point measured, in order
   PlanesFitStart learned;               // where the fit of a neighbouring size may start
 };
@@ -50,12 +56,13 @@ std::vector<int> global_basis_sizes(int lights);
 // The field with the first `terms` of `directions` (global_basis_directions) and its weight planes
 // coded to meet `target` (exactly one of bytes and PSNR, as rate_control.hpp says) in a container
 // written with `container`. Not met: the closest point (the fewest bytes for a byte target, the
-// most for a PSNR target). `measured` hears of every point.
+// most for a PSNR target). `measured` hears of every point; `how_close` applies to byte targets.
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,
                                 const PlanesFitStart& start = {},
-                                const PlanesPointHook& measured = {});
+                                const PlanesPointHook& measured = {},
+                                BytesFit how_close = BytesFit::close);
 
 // `fitted`'s basis (a fit's field, its W as decoded) refitted to that W (refit_global_basis) and
 // measured with `container`: kept when it meets `target` wherever `point` (the fit's) did and

@@ -250,8 +250,10 @@ bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& 
 // The one-basis model fitted to the target at basis sizes chosen by hill climbing: from the
 // middle of global_basis_sizes, to the neighbouring size that does better until none does (the
 // PSNR at given bytes rises with the size until the weights' bytes outweigh it), larger sizes
-// tried first. Each fit is offered to `offer` with its options; sizes whose weight planes would
-// not fit in memory are not tried. `stats`: what the model's parameters record.
+// tried first. A byte target compares the sizes at their first container that fits (one
+// codestream each, BytesFit::first_fit) and brings only the size chosen within 1.5% of the
+// bytes. Each fit is offered to `offer` with its options; sizes whose weight planes would not fit
+// in memory are not tried. `stats`: what the model's parameters record.
 void try_global_basis(
     const ReflectanceField& field, const CompressionOptions& options, const CompressionStats& stats,
     const RateTarget& target, const ContainerOptions& container, nlohmann::ordered_json& tried,
@@ -264,10 +266,15 @@ void try_global_basis(
   while (!sizes.empty() && per_term * std::uint64_t(sizes.back()) > budget) sizes.pop_back();
   if (sizes.empty()) return;
   const Eigen::MatrixXd directions = global_basis_directions(field, sizes.back());
-  std::map<std::size_t, CurveChoice> done;  // by index into sizes
+  struct SizeFit {
+    CurveChoice choice;
+    PlanesFitStart learned;
+    bool settled = true;
+    std::size_t tried_entry = 0;  // its entry in `tried`
+  };
+  std::map<std::size_t, SizeFit> done;  // by index into sizes
   PlanesFitStart start;
-  const auto evaluate = [&](std::size_t index) -> const CurveChoice& {
-    if (const auto found = done.find(index); found != done.end()) return found->second;
+  const auto fit_size = [&](std::size_t index, BytesFit how_close) -> const SizeFit& {
     const int terms = sizes[index];
     CompressionOptions sized = options;
     sized.clustering.terms = terms;
@@ -281,26 +288,38 @@ void try_global_basis(
                      terms, static_cast<unsigned long long>(point.plane_bytes),
                      static_cast<unsigned long long>(point.bytes), point.psnr);
     };
-    GlobalBasisFit fit =
-        fit_global_basis(field, directions, terms, target, planned, threads, start, note_point);
+    const auto earlier = done.find(index);
+    GlobalBasisFit fit = fit_global_basis(field, directions, terms, target, planned, threads,
+                                          earlier != done.end() ? earlier->second.learned : start,
+                                          note_point, how_close);
     start = fit.learned;
     nlohmann::ordered_json points = nlohmann::ordered_json::array();
+    if (earlier != done.end()) points = tried[earlier->second.tried_entry]["points"];
     for (const PlanesRatePoint& point : fit.points) points.push_back(to_json(point));
-    tried.push_back({{"model", "global_basis"},
-                     {"terms", terms},
-                     {"clusters", 1},
-                     {"met", fit.met},
-                     {"choice", to_json(fit.point)},
-                     {"points", points}});
+    nlohmann::ordered_json entry = {
+        {"model", "global_basis"},      {"terms", terms},  {"clusters", 1}, {"met", fit.met},
+        {"choice", to_json(fit.point)}, {"points", points}};
+    std::size_t tried_entry = tried.size();
+    if (earlier != done.end())
+      tried[tried_entry = earlier->second.tried_entry] = std::move(entry);
+    else
+      tried.push_back(std::move(entry));
     if (!options.clustering.quiet)
       std::fprintf(stderr,
                    "compress: rate target: one basis of %d terms, weights as JPEG 2000 planes -> "
                    "%llu bytes, %.2f dB, error %.5f%s\n",
                    terms, static_cast<unsigned long long>(fit.point.bytes), fit.point.psnr,
                    fit.point.error, fit.met ? "" : " (target not met)");
-    const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met};
+    const SizeFit size_fit{{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met},
+                           fit.learned,
+                           fit.settled,
+                           tried_entry};
     offer(fit, sized);
-    return done.emplace(index, choice).first->second;
+    return done.insert_or_assign(index, size_fit).first->second;
+  };
+  const auto evaluate = [&](std::size_t index) -> const CurveChoice& {
+    if (const auto found = done.find(index); found != done.end()) return found->second.choice;
+    return fit_size(index, BytesFit::first_fit).choice;
   };
   std::size_t at = sizes.size() / 2;
   evaluate(at);  // also the only size of a field of 4 lights or fewer
@@ -310,12 +329,14 @@ void try_global_basis(
     bool moved = false;
     for (;;) {
       const std::size_t neighbour = up ? at + 1 : at - 1;  // at - 1 wraps below 0
-      if (neighbour >= sizes.size() || !better(evaluate(neighbour), done.at(at), target)) break;
+      if (neighbour >= sizes.size() || !better(evaluate(neighbour), done.at(at).choice, target))
+        break;
       at = neighbour;
       moved = true;
     }
     if (moved) break;
   }
+  if (!done.at(at).settled) fit_size(at, BytesFit::close);
 }
 
 }  // namespace
