@@ -216,6 +216,21 @@ std::vector<int> global_basis_sizes(int lights) {
   return sizes;
 }
 
+double next_size_gain(const std::array<int, 3>& terms, const std::array<double, 3>& psnr,
+                      int next) {
+  const double at = std::log(double(next));
+  double value = 0;  // Lagrange's form of the parabola, at `next`
+  for (std::size_t i = 0; i < 3; ++i) {
+    double weight = 1;
+    for (std::size_t j = 0; j < 3; ++j)
+      if (j != i)
+        weight *= (at - std::log(double(terms[j]))) /
+                  (std::log(double(terms[i])) - std::log(double(terms[j])));
+    value += weight * psnr[i];
+  }
+  return value - psnr[2];
+}
+
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
                                 int terms, const RateTarget& target,
                                 const ContainerOptions& container, unsigned threads,

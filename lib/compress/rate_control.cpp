@@ -2,6 +2,7 @@
 #include "compress/rate_control.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -16,6 +17,7 @@
 #include "compress/global_basis.hpp"
 #include "compress/global_basis_rate.hpp"
 #include "core/memory_budget.hpp"
+#include "core/text_numbers.hpp"
 #include "model/field_psnr.hpp"
 
 namespace relume {
@@ -321,16 +323,48 @@ void try_global_basis(
     if (const auto found = done.find(index); found != done.end()) return found->second.choice;
     return fit_size(index, BytesFit::first_fit).choice;
   };
+  // A byte target's gain in PSNR from `at` to the next size up, predicted when `at` and the two
+  // sizes below it met the target (next_size_gain).
+  const auto predicted_gain = [&](std::size_t at) -> std::optional<double> {
+    if (target.bytes == 0 || at < 2 || at + 1 >= sizes.size()) return std::nullopt;
+    std::array<int, 3> terms;
+    std::array<double, 3> psnr;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto found = done.find(at - 2 + i);
+      if (found == done.end() || !found->second.choice.met) return std::nullopt;
+      terms[i] = sizes[at - 2 + i];
+      psnr[i] = found->second.choice.point.psnr;
+    }
+    return next_size_gain(terms, psnr, sizes[at + 1]);
+  };
   std::size_t at = sizes.size() / 2;
   evaluate(at);  // also the only size of a field of 4 lights or fewer
-  // Upward first, while each step pays; downward only when the first step up did not pay: the
-  // curve has one peak, so once a larger size did better no smaller one can win.
+  // Upward first, while each step pays (or is predicted to); downward only when the first step up
+  // did not pay: the curve has one peak, so once a larger size did better no smaller one can win.
   for (const bool up : {true, false}) {
     bool moved = false;
     for (;;) {
       const std::size_t neighbour = up ? at + 1 : at - 1;  // at - 1 wraps below 0
-      if (neighbour >= sizes.size() || !better(evaluate(neighbour), done.at(at).choice, target))
+      if (neighbour >= sizes.size()) break;
+      if (const std::optional<double> gain = up ? predicted_gain(at) : std::nullopt;
+          gain && *gain <= 0) {
+        const std::string why =
+            "predicted to lose " + number_text(std::round(-*gain * 100) / 100) + " dB against " +
+            std::to_string(sizes[at]) + " terms (a parabola through the PSNRs of " +
+            std::to_string(sizes[at - 2]) + ", " + std::to_string(sizes[at - 1]) + " and " +
+            std::to_string(sizes[at]) + " terms against the size's logarithm)";
+        tried.push_back({{"model", "global_basis"},
+                         {"terms", sizes[neighbour]},
+                         {"clusters", 1},
+                         {"met", false},
+                         {"predicted_gain_db", *gain},
+                         {"not_stored", why}});
+        if (!options.clustering.quiet)
+          std::fprintf(stderr, "compress: rate target: one basis of %d terms: not fitted, %s\n",
+                       sizes[neighbour], why.c_str());
         break;
+      }
+      if (!better(evaluate(neighbour), done.at(at).choice, target)) break;
       at = neighbour;
       moved = true;
     }
