@@ -17,14 +17,13 @@ namespace {
 
 // 48 x 40 pixels, 3 channels, `lights` lights: a random field of 2 clusters, 3 terms, with noise.
 ReflectanceField sample_original(int lights = 24) {
-  RandomFieldShape shape;
-  shape.width = 48;
-  shape.height = 40;
-  shape.lights = lights;
-  shape.clusters = 2;
-  shape.terms = 3;
-  shape.residual_per_function = 2;
-  return testing::noisy_original(random_compressed_field(shape), 0.01);
+  return testing::noisy_original(random_compressed_field({.width = 48,
+                                                          .height = 40,
+                                                          .lights = lights,
+                                                          .clusters = 2,
+                                                          .terms = 3,
+                                                          .residual_per_function = 2}),
+                                 0.01);
 }
 
 RateTarget one_basis_target() {

@@ -173,16 +173,13 @@ TEST(WeightPlanes, EachTermsPrincipalColourAxesTakeNearlyAllOfItInItsFirstPlane)
 // Other channel counts have no colour transform: component a is channel a, in every term.
 TEST(WeightPlanes, FieldsOfOneOrFourChannelsKeepTheirChannelsAsPlanes) {
   for (const int channels : {1, 4}) {
-    RandomFieldShape shape;
-    shape.width = 6;
-    shape.height = 5;
-    shape.channels = channels;
-    shape.lights = 8;
-    shape.clusters = 1;
-    shape.terms = 2;
-    shape.residual_per_function = 2;
-    shape.stored_fraction = 1.0;
-    const CompressedField field = random_compressed_field(shape);
+    const CompressedField field = random_compressed_field({.width = 6,
+                                                           .height = 5,
+                                                           .channels = channels,
+                                                           .lights = 8,
+                                                           .clusters = 1,
+                                                           .terms = 2,
+                                                           .residual_per_function = 2});
     EXPECT_TRUE(principal_colour_angles(field).empty());
     const std::vector<float> planes = weight_planes(field);
     ASSERT_EQ(planes.size(), std::size_t(channels) * 2 * 30);
