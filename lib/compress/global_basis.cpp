@@ -88,7 +88,8 @@ Eigen::MatrixXd global_basis_directions(const ReflectanceField& field, int terms
 }
 
 CompressedField global_basis_field(const ReflectanceField& field, const Eigen::MatrixXd& directions,
-                                   int terms, unsigned threads) {
+                                   int terms, unsigned threads,
+                                   const std::vector<float>& noise_sigma) {
   if (terms < 1 || terms > directions.rows() || directions.cols() != field.lights())
     throw Error("a global basis of " + std::to_string(terms) + " terms from " +
                 std::to_string(directions.rows()) + " directions of " +
@@ -138,9 +139,15 @@ CompressedField global_basis_field(const ReflectanceField& field, const Eigen::M
     term_energy += block_term_energy[b];
   }
   const double truncation = std::max(0.0, field_energy - term_energy.sum());
+  double noise_energy = 0;
+  for (const std::uint32_t function : out.stored_function)
+    if (const std::size_t channel = function % std::uint32_t(field.channels);
+        channel < noise_sigma.size())
+      noise_energy += double(field.lights()) * double(noise_sigma[channel]) * noise_sigma[channel];
   const Eigen::MatrixXd basis = directions.topRows(terms);
-  store_quantized_basis(basis, basis_steps(basis, term_energy, basis_error_share * truncation),
-                        out);
+  store_quantized_basis(
+      basis,
+      basis_steps(basis, term_energy, basis_error_share * std::max(truncation, noise_energy)), out);
   out.residual.row_offsets.assign(out.stored_function.size() + 1, 0);
   return out;
 }

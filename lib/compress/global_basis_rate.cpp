@@ -232,11 +232,11 @@ double next_size_gain(const std::array<int, 3>& terms, const std::array<double, 
 }
 
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
-                                int terms, const RateTarget& target,
-                                const ContainerOptions& container, unsigned threads,
-                                const PlanesFitStart& start, const PlanesPointHook& measured,
-                                BytesFit how_close) {
-  CompressedField fitted = global_basis_field(field, directions, terms, threads);
+                                int terms, const std::vector<float>& noise_sigma,
+                                const RateTarget& target, const ContainerOptions& container,
+                                unsigned threads, const PlanesFitStart& start,
+                                const PlanesPointHook& measured, BytesFit how_close) {
+  CompressedField fitted = global_basis_field(field, directions, terms, threads, noise_sigma);
   fitted.coded_weights.colour_angles = principal_colour_angles(fitted);
   PlanesCurve curve(field, std::move(fitted), target, container, threads, measured);
   const std::uint64_t raw_bytes =

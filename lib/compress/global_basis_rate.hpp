@@ -60,14 +60,15 @@ std::vector<int> global_basis_sizes(int lights);
 // 64; at 0.1 B/px -0.11 dB, where the step lost 0.5 dB.
 double next_size_gain(const std::array<int, 3>& terms, const std::array<double, 3>& psnr, int next);
 
-// The field with the first `terms` of `directions` (global_basis_directions) and its weight planes
-// coded to meet `target` (exactly one of bytes and PSNR, as rate_control.hpp says) in a container
-// written with `container`. Not met: the closest point (the fewest bytes for a byte target, the
-// most for a PSNR target). `measured` hears of every point; `how_close` applies to byte targets.
+// The field with the first `terms` of `directions` (global_basis_directions; its basis stored
+// for `noise_sigma`, as global_basis_field says) and its weight planes coded to meet `target`
+// (exactly one of bytes and PSNR, as rate_control.hpp says) in a container written with
+// `container`. Not met: the closest point (the fewest bytes for a byte target, the most for a PSNR
+// target). `measured` hears of every point; `how_close` applies to byte targets.
 GlobalBasisFit fit_global_basis(const ReflectanceField& field, const Eigen::MatrixXd& directions,
-                                int terms, const RateTarget& target,
-                                const ContainerOptions& container, unsigned threads,
-                                const PlanesFitStart& start = {},
+                                int terms, const std::vector<float>& noise_sigma,
+                                const RateTarget& target, const ContainerOptions& container,
+                                unsigned threads, const PlanesFitStart& start = {},
                                 const PlanesPointHook& measured = {},
                                 BytesFit how_close = BytesFit::close);
 

@@ -16,6 +16,7 @@
 #include "compress/clustered_factorization.hpp"
 #include "compress/global_basis.hpp"
 #include "compress/global_basis_rate.hpp"
+#include "compress/noise_model.hpp"
 #include "core/memory_budget.hpp"
 #include "core/text_numbers.hpp"
 #include "model/field_psnr.hpp"
@@ -254,8 +255,9 @@ bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& 
 // PSNR at given bytes rises with the size until the weights' bytes outweigh it), larger sizes
 // tried first. A byte target compares the sizes at their first container that fits (one
 // codestream each, BytesFit::first_fit) and brings only the size chosen within 1.5% of the
-// bytes. Each fit is offered to `offer` with its options; sizes whose weight planes would not fit
-// in memory are not tried. `stats`: what the model's parameters record.
+// bytes. Every size's basis is stored for the field's estimated noise (global_basis_field).
+// Each fit is offered to `offer` with its options; sizes whose weight planes would not fit in
+// memory are not tried. `stats`: what the model's parameters record.
 void try_global_basis(
     const ReflectanceField& field, const CompressionOptions& options, const CompressionStats& stats,
     const RateTarget& target, const ContainerOptions& container, nlohmann::ordered_json& tried,
@@ -268,6 +270,7 @@ void try_global_basis(
   while (!sizes.empty() && per_term * std::uint64_t(sizes.back()) > budget) sizes.pop_back();
   if (sizes.empty()) return;
   const Eigen::MatrixXd directions = global_basis_directions(field, sizes.back());
+  const std::vector<float> noise_sigma = estimate_noise(field, threads).sigma;
   struct SizeFit {
     CurveChoice choice;
     PlanesFitStart learned;
@@ -291,9 +294,9 @@ void try_global_basis(
                      static_cast<unsigned long long>(point.bytes), point.psnr);
     };
     const auto earlier = done.find(index);
-    GlobalBasisFit fit = fit_global_basis(field, directions, terms, target, planned, threads,
-                                          earlier != done.end() ? earlier->second.learned : start,
-                                          note_point, how_close);
+    GlobalBasisFit fit = fit_global_basis(
+        field, directions, terms, noise_sigma, target, planned, threads,
+        earlier != done.end() ? earlier->second.learned : start, note_point, how_close);
     start = fit.learned;
     nlohmann::ordered_json points = nlohmann::ordered_json::array();
     if (earlier != done.end()) points = tried[earlier->second.tried_entry]["points"];

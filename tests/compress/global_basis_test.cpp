@@ -1,7 +1,7 @@
 // The one-basis model's basis quantization (compress/global_basis.hpp): steps as coarse as keep
-// the basis's error at basis_error_share of the truncation error, finer for the strong terms,
-// and the 12-bit steps of each term's largest value when nothing is truncated; and the basis
-// refitted to the weights as their coding left them.
+// the basis's error at basis_error_share of the truncation error or of the noise, finer for the
+// strong terms, and the 12-bit steps of each term's largest value when nothing is truncated and
+// no noise is known; and the basis refitted to the weights as their coding left them.
 #include "compress/global_basis.hpp"
 
 #include <gtest/gtest.h>
@@ -93,6 +93,24 @@ TEST(GlobalBasis, TheWholeBasisKeepsTwelveBitsOfEachTerm) {
   const double mean_square = original.values.cast<double>().squaredNorm() /
                              double(original.values.size());
   EXPECT_LT(stored_error(original, field, stored_basis(field)), 1e-6 * mean_square);
+}
+
+// Given the sensor noise, the whole basis (nothing truncated) is stored no finer than adds
+// basis_error_share of the noise's energy: the coded weights' error is at least about the noise,
+// so twelve bits a value would buy nothing (at 96 terms of 96 lights on the 8-bit ball, half the
+// basis's bytes).
+TEST(GlobalBasis, TheWholeBasisOfANoisyFieldAddsItsShareOfTheNoise) {
+  const double noise = 0.01;
+  const ReflectanceField original = sample_original(noise);
+  const Eigen::MatrixXd directions = global_basis_directions(original, original.lights());
+  const std::vector<float> sigma(std::size_t(original.channels), float(noise));
+  const CompressedField field =
+      global_basis_field(original, directions, original.lights(), 0, sigma);
+  const double quantized = stored_error(original, field, stored_basis(field));
+  EXPECT_GT(quantized, 0.3 * basis_error_share * noise * noise);
+  EXPECT_LT(quantized, 3 * basis_error_share * noise * noise);
+  const double twelve_bits = std::ldexp(1.0, global_basis_bits - 1) - 1;
+  for (int j = 0; j < field.terms; ++j) EXPECT_LT(largest_integer(field, j), twelve_bits / 2);
 }
 
 // A field of 12 terms whose W is coded as JPEG 2000 planes in few bytes: far from its projection.
