@@ -269,12 +269,25 @@ ClusterModel cluster_prepared_rows(const WorkingRows& rows, int lights,
   return model;
 }
 
+NoiseModel noise_model_for(const ReflectanceField& field, const CompressionOptions& options) {
+  return options.noise_floor >= 0 ? noise_floor_model(field, options.noise_floor)
+                                  : estimate_noise(field, options.clustering.threads);
+}
+
 PreparedField prepare_field(const ReflectanceField& field, const CompressionOptions& options) {
   validate_compression_options(options);
   const auto start = Clock::now();
+  PreparedField prepared = prepare_field(field, options, noise_model_for(field, options));
+  prepared.seconds = seconds_since(start);
+  return prepared;
+}
+
+PreparedField prepare_field(const ReflectanceField& field, const CompressionOptions& options,
+                            NoiseModel noise) {
+  validate_compression_options(options);
+  const auto start = Clock::now();
   PreparedField prepared;
-  prepared.noise = options.noise_floor >= 0 ? noise_floor_model(field, options.noise_floor)
-                                            : estimate_noise(field, options.clustering.threads);
+  prepared.noise = std::move(noise);
   prepared.rows = prepare_rows(
       field, options.transform == BasisTransform::haar, prepared.noise, options.clustering.threads,
       options.light_weighting > 0 ? light_weighting_scales(field, options.light_weighting)

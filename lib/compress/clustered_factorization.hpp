@@ -125,6 +125,12 @@ struct PreparedField {
   double seconds = 0;  // how long preparing took
 };
 PreparedField prepare_field(const ReflectanceField& field, const CompressionOptions& options);
+// The same with the noise model made already (noise_model_for(field, options)).
+PreparedField prepare_field(const ReflectanceField& field, const CompressionOptions& options,
+                            NoiseModel noise);
+
+// The noise model a compression with `options` uses: the user's noise floor, else the estimate.
+NoiseModel noise_model_for(const ReflectanceField& field, const CompressionOptions& options);
 
 // compress_field with the rows `prepared` by prepare_field(field, O) for options O that differ
 // from `options` at most in terms, clusters and the residual budget.

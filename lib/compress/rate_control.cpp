@@ -255,12 +255,13 @@ bool float_model_cannot_win(const ReflectanceField& field, const GridCandidate& 
 // PSNR at given bytes rises with the size until the weights' bytes outweigh it), larger sizes
 // tried first. A byte target compares the sizes at their first container that fits (one
 // codestream each, BytesFit::first_fit) and brings only the size chosen within 1.5% of the
-// bytes. Every size's basis is stored for the field's estimated noise (global_basis_field).
+// bytes. Every size's basis is stored for the noise `noise_sigma` (global_basis_field).
 // Each fit is offered to `offer` with its options; sizes whose weight planes would not fit in
 // memory are not tried. `stats`: what the model's parameters record.
 void try_global_basis(
     const ReflectanceField& field, const CompressionOptions& options, const CompressionStats& stats,
-    const RateTarget& target, const ContainerOptions& container, nlohmann::ordered_json& tried,
+    const std::vector<float>& noise_sigma, const RateTarget& target,
+    const ContainerOptions& container, nlohmann::ordered_json& tried,
     const std::function<void(GlobalBasisFit&, const CompressionOptions&)>& offer) {
   const unsigned threads = options.clustering.threads;
   std::vector<int> sizes = global_basis_sizes(field.lights());
@@ -270,7 +271,6 @@ void try_global_basis(
   while (!sizes.empty() && per_term * std::uint64_t(sizes.back()) > budget) sizes.pop_back();
   if (sizes.empty()) return;
   const Eigen::MatrixXd directions = global_basis_directions(field, sizes.back());
-  const std::vector<float> noise_sigma = estimate_noise(field, threads).sigma;
   struct SizeFit {
     CurveChoice choice;
     PlanesFitStart learned;
@@ -465,9 +465,12 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   global_stats.functions = field.functions();
   global_stats.clusters_asked = global_stats.clusters = 1;
   global_stats.one_basis = true;
+  // One noise model for both models: the clustered rows' dark pixels and the one basis's steps
+  // (none known where the user gave a noise floor).
+  const NoiseModel noise = noise_model_for(field, options);
   if (target.one_basis)
     try_global_basis(
-        field, global_options, global_stats, target, container, tried,
+        field, global_options, global_stats, noise.sigma, target, container, tried,
         [&](GlobalBasisFit& fit, const CompressionOptions& sized) {
           const CurveChoice choice{{0, fit.point.bytes, fit.point.error, fit.point.psnr}, fit.met};
           if (best_choice && !better(choice, *best_choice, target)) return;
@@ -495,7 +498,7 @@ TargetSearch compress_to_rate_target(const ReflectanceField& field,
   EntryCost entry_cost;
   // The rows every pair is factored from, prepared once.
   std::optional<PreparedField> prepared;
-  if (target.clustered) prepared = prepare_field(field, options);
+  if (target.clustered) prepared = prepare_field(field, options, noise);
   // For a byte target whose best choice met it: whether the PSNR with every stored row exact (the
   // dark pixels' error, what no pair's model changes) is no more than the best choice's.
   const auto update_none_can_win = [&] {
