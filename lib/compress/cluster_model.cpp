@@ -2,11 +2,11 @@
 #include "compress/cluster_model.hpp"
 
 #include <cmath>
-#include <limits>
 #include <relume/error.hpp>
 
 #include "compress/dark_pixels.hpp"
 #include "core/parallel.hpp"
+#include "core/value_scans.hpp"
 #include "model/haar_transform.hpp"
 
 namespace relume {
@@ -17,19 +17,6 @@ std::vector<std::vector<std::uint32_t>> ClusterModel::members() const {
     lists[static_cast<std::size_t>(assignment[r])].push_back(static_cast<std::uint32_t>(r));
   return lists;
 }
-
-namespace {
-
-// Whether every value is finite: NaN and both infinities fail the comparison. A loop the compiler
-// vectorizes: 0.04 s over a whole frame's 90 million values, where Eigen's allFinite took 1 s.
-bool all_finite(const float* values, std::size_t count) {
-  int not_finite = 0;
-  for (std::size_t i = 0; i < count; ++i)
-    not_finite |= !(std::abs(values[i]) <= std::numeric_limits<float>::max());
-  return not_finite == 0;
-}
-
-}  // namespace
 
 void check_finite_values(const ReflectanceField& field) {
   if (!field.mask.empty() && std::int64_t(field.mask.size()) != field.pixels())

@@ -13,6 +13,7 @@
 #include "compress/peak_residual_allocation.hpp"
 #include "core/elapsed_time.hpp"
 #include "core/parallel.hpp"
+#include "core/value_scans.hpp"
 #include "model/haar_transform.hpp"
 
 namespace relume {
@@ -135,7 +136,7 @@ CompressedField field_of_prepared_rows(const ReflectanceField& field, const Prep
   out.dark = prepared.dark;
   out.dark_gains = prepared.dark_gains;
   out.dark_gain_step = prepared.dark_gain_step;
-  out.non_negative = (field.values.array() >= 0.0f).all();
+  out.non_negative = all_non_negative(field.values.data(), std::size_t(field.values.size()));
   return out;
 }
 

@@ -9,6 +9,7 @@
 
 #include "compress/leading_subspace.hpp"
 #include "core/parallel.hpp"
+#include "core/value_scans.hpp"
 
 namespace relume {
 namespace {
@@ -106,7 +107,7 @@ CompressedField global_basis_field(const ReflectanceField& field, const Eigen::M
       field.mask.empty() ? std::vector<std::uint8_t>(std::size_t(field.pixels()), 1) : field.mask;
   out.directions = field.directions;
   out.intensities = field.intensities;
-  out.non_negative = (field.values.array() >= 0.0f).all();
+  out.non_negative = all_non_negative(field.values.data(), std::size_t(field.values.size()));
 
   // Each function's projection on the unquantized basis: the rank-`terms` fit.
   out.stored_function = stored_functions(field);

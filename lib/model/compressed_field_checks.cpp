@@ -5,6 +5,8 @@
 #include <relume/error.hpp>
 #include <vector>
 
+#include "core/value_scans.hpp"
+
 namespace relume {
 namespace {
 
@@ -102,12 +104,14 @@ void check_weights(const CompressedField& field, const std::string& where) {
     throw Error(where + ": W is " + std::to_string(rows) + "x" +
                 std::to_string(field.weights.cols()) + ", expected stored rows x terms = " +
                 std::to_string(field.stored_rows()) + "x" + std::to_string(field.terms));
-  for (std::size_t r = 0; r < rows; ++r)
-    for (int j = 0; j < field.terms; ++j)
-      if (!std::isfinite(field.weights(Eigen::Index(r), j)))
-        throw Error(where + ": weight of " + stored_row_name(r) + " term " + std::to_string(j) +
-                    " is " + std::to_string(field.weights(Eigen::Index(r), j)) +
-                    ", expected finite");
+  // The fast scan first; the loop names the first non-finite weight.
+  if (!all_finite(field.weights.data(), std::size_t(field.weights.size())))
+    for (std::size_t r = 0; r < rows; ++r)
+      for (int j = 0; j < field.terms; ++j)
+        if (!std::isfinite(field.weights(Eigen::Index(r), j)))
+          throw Error(where + ": weight of " + stored_row_name(r) + " term " + std::to_string(j) +
+                      " is " + std::to_string(field.weights(Eigen::Index(r), j)) +
+                      ", expected finite");
   const CodedWeights& coded = field.coded_weights;
   if (!coded.empty() && !(std::isfinite(coded.step) && coded.step > 0 &&
                           field.quantization.weight_step == 0 && field.terms > 0))
