@@ -12,8 +12,14 @@
 namespace relume {
 namespace {
 
+// round(clamp(value * scale, 0, 255)) without the call to libm's round() that the compiler
+// leaves for it (Psnr8Sums::add with that call: 13% of a rate target's CPU samples under perf,
+// 8% without): for x >= 0 the fraction x - trunc(x) is exact and round() takes halves up, so
+// this is the same value, and trunc() is inlined.
 double to_8bit(double value, double scale) {
-  return std::round(std::clamp(value * scale, 0.0, 255.0));
+  const double x = std::clamp(value * scale, 0.0, 255.0);
+  const double whole = std::trunc(x);
+  return whole + (x - whole >= 0.5 ? 1.0 : 0.0);
 }
 
 double psnr_of(const std::vector<double>& squared_error_per_light, double samples) {

@@ -5,9 +5,11 @@
 // measures what it says. (Damaged quantized sections: tests/container/container_test.cpp.)
 #include "model/quantization.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <relume/container.hpp>
 #include <relume/error.hpp>
+#include <vector>
 
 #include "container/weight_prediction.hpp"
 #include "model/basis_alignment.hpp"
@@ -220,6 +222,36 @@ TEST(FieldPsnr, MatchesADirectComputationAndIsInfiniteWhenExact) {
   EXPECT_NEAR(psnr_8bit(shifted, field).whole_frame, 20 * std::log10(255.0) - 10 * std::log10(mse),
               1e-9);
   EXPECT_THAT(error_message([&] { psnr_8bit(exact, field, 0.0); }), HasSubstr("white level"));
+}
+
+// The 8-bit levels are std::round's of the clamped values, also at and next to the halves, below
+// 0 and above 255: each value against 0 adds the square of its level, as std::round counts it.
+TEST(FieldPsnr, RoundsLikeStdRoundAtHalvesAndClampsOutOfRange) {
+  const std::vector<float> values = {0.5f,
+                                     std::nextafter(0.5f, 0.0f),
+                                     std::nextafter(0.5f, 1.0f),
+                                     1.5f,
+                                     2.5f,
+                                     std::nextafter(2.5f, 0.0f),
+                                     127.49999f,
+                                     254.5f,
+                                     std::nextafter(254.5f, 0.0f),
+                                     255.4f,
+                                     300.0f,
+                                     -0.4f,
+                                     -7.0f,
+                                     0.0f};
+  const int lights = int(values.size());
+  const std::vector<float> zero(values.size(), 0.0f);
+  Psnr8Sums sums;
+  sums.add(values.data(), zero.data(), lights, 1.0, true);
+  for (int i = 0; i < lights; ++i) {
+    const double level = std::round(std::clamp(double(values[std::size_t(i)]), 0.0, 255.0));
+    EXPECT_EQ(sums.all[std::size_t(i)], level * level) << values[std::size_t(i)];
+    EXPECT_EQ(sums.inside[std::size_t(i)], level * level) << values[std::size_t(i)];
+  }
+  EXPECT_EQ(sums.all[0], 1.0);  // 0.5 goes up
+  EXPECT_EQ(sums.all[1], 0.0);  // just below it does not
 }
 
 // A rate search measures each point once for both figures: the same PSNR as psnr_8bit and the
